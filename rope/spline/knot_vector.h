@@ -5,6 +5,7 @@
 // ([A]'s own example: {0, 1, ..., 14} for 11 cubic control points). Parameters are dimensionless
 // unless a caller chooses otherwise (interpolation uses chord length in metres).
 
+#include <cstddef>
 #include <vector>
 
 namespace rope {
@@ -27,11 +28,11 @@ class KnotVector {
   int degree() const { return degree_; }
   int controlPointCount() const { return static_cast<int>(knots_.size()) - degree_ - 1; }
   int size() const { return static_cast<int>(knots_.size()); }
-  double operator[](int i) const { return knots_[static_cast<size_t>(i)]; }
+  double operator[](int i) const { return knots_[static_cast<std::size_t>(i)]; }
   const std::vector<double>& values() const { return knots_; }
 
-  double validBegin() const { return knots_[static_cast<size_t>(degree_)]; }
-  double validEnd() const { return knots_[static_cast<size_t>(controlPointCount())]; }
+  double validBegin() const { return knots_[static_cast<std::size_t>(degree_)]; }
+  double validEnd() const { return knots_[static_cast<std::size_t>(controlPointCount())]; }
   // True for finite s in [validBegin, validEnd].
   bool contains(double s) const;
   // True if the first (last) d+1 knots are equal.

@@ -1,0 +1,88 @@
+#include "rope/spline/control_polygon.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "rope/common/error.h"
+
+namespace rope {
+namespace {
+
+// Sides a = q_i - q_{i-1} and b = q_{i+1} - q_i, validated.
+void sides(const PointList& points, int i, Vec3& a, Vec3& b) {
+  const int n = static_cast<int>(points.size());
+  if (i < 1 || i > n - 2) {
+    throw InvalidArgument("i", std::to_string(i),
+                          "must be an interior vertex in 1..points.size()-2 = " + std::to_string(n - 2));
+  }
+  for (int j = i - 1; j <= i + 1; ++j) {
+    for (int c = 0; c < 3; ++c) {
+      const double value = points[static_cast<size_t>(j)][c];
+      if (!std::isfinite(value)) {
+        throw InvalidArgument("points[" + std::to_string(j) + "][" + std::to_string(c) + "]", formatValue(value),
+                              "must be finite");
+      }
+    }
+  }
+  a = points[static_cast<size_t>(i)] - points[static_cast<size_t>(i - 1)];
+  b = points[static_cast<size_t>(i + 1)] - points[static_cast<size_t>(i)];
+}
+
+}  // namespace
+
+double bendMeasure(const PointList& points, int i) {
+  Vec3 a;
+  Vec3 b;
+  sides(points, i, a, b);
+  const double lengths = a.norm() * b.norm();
+  if (!(lengths > 0.0)) return 0.0;  // a zero-length side has no direction to bend
+  // [A] eq. 13 with the corrected sign (spec §3); the clamp absorbs rounding of |cos| past 1.
+  const double cosine = std::clamp(a.dot(b) / lengths, -1.0, 1.0);
+  return 0.5 * (1.0 - cosine);
+}
+
+double includedAngle(const PointList& points, int i) {
+  Vec3 a;
+  Vec3 b;
+  sides(points, i, a, b);
+  const double pi = std::acos(-1.0);
+  if (!(a.norm() > 0.0 && b.norm() > 0.0)) return pi;
+  // atan2 keeps full accuracy near straight and near folded, where acos of the cosine does not.
+  const double turn = std::atan2(a.cross(b).norm(), a.dot(b));
+  return pi - turn;
+}
+
+double bendMeasureFromAngle(double includedAngleRadians) {
+  requireFinite("includedAngleRadians", includedAngleRadians);
+  const double pi = std::acos(-1.0);
+  if (includedAngleRadians < 0.0 || includedAngleRadians > pi) {
+    throw InvalidArgument("includedAngleRadians", formatValue(includedAngleRadians), "must be in [0, pi]");
+  }
+  return 0.5 * (1.0 + std::cos(includedAngleRadians));  // [B] / spec §3: c = (1 + cos theta) / 2
+}
+
+double angleFromBendMeasure(double bendMeasure) {
+  requireFinite("bendMeasure", bendMeasure);
+  if (bendMeasure < 0.0 || bendMeasure > 1.0) {
+    throw InvalidArgument("bendMeasure", formatValue(bendMeasure), "must be in [0, 1]");
+  }
+  return std::acos(2.0 * bendMeasure - 1.0);
+}
+
+double polygonLength(const PointList& points) {
+  double length = 0.0;
+  for (size_t i = 1; i < points.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(points[i][c]) || !std::isfinite(points[i - 1][c])) {
+        const size_t bad = std::isfinite(points[i - 1][c]) ? i : i - 1;
+        throw InvalidArgument("points[" + std::to_string(bad) + "][" + std::to_string(c) + "]",
+                              formatValue(points[bad][c]), "must be finite");
+      }
+    }
+    length += (points[i] - points[i - 1]).norm();
+  }
+  return length;
+}
+
+}  // namespace rope

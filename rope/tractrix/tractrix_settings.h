@@ -1,0 +1,63 @@
+#pragma once
+// What a user configures for a tractrix rope ([B] §3.3–4). Plain data; validateTractrixSettings()
+// checks it. Angles are radians in the struct; use degrees() / setThresholdsDegrees() to work in
+// degrees like [B].
+
+#include "rope/common/types.h"
+
+namespace rope {
+
+// [B] §4's three algorithms.
+enum class TractrixVariant {
+  kPolyline,                // TRX: exact polyline of segmentCount rigid segments (lengths kept exactly)
+  kSplineSubdivide,         // TRX_SD: tractrix on a B-spline control polygon, subdivision below subdivisionAngle
+  kSplineSubdivideMerge,    // TRX_SD_MRG: as TRX_SD, plus merging above mergingAngle
+};
+
+constexpr double kTractrixPi = 3.14159265358979323846;
+constexpr double degrees(double value) { return value * (kTractrixPi / 180.0); }  // degrees -> radians
+constexpr double toDegrees(double radians) { return radians * (180.0 / kTractrixPi); }
+
+struct TractrixSettings {
+  TractrixVariant variant = TractrixVariant::kSplineSubdivideMerge;
+
+  // Initial number of sides: rigid segments for kPolyline (>= 1), control polygon sides for the
+  // spline variants (>= degree; the control point count is segmentCount + 1). [B] §4 uses 6.
+  int segmentCount = 6;
+
+  // Spline degree for the spline variants, 2..kMaxDegree ([B] uses cubic). kPolyline ignores it.
+  int degree = 3;
+
+  // Included-angle thresholds in radians, 0 < subdivisionAngle < mergingAngle < pi ([B] §4: 140°,
+  // 160°). A corner whose included angle is below subdivisionAngle is cut by knot insertion; a knot
+  // is removed when every corner it affects is above mergingAngle. thresholdsForLengthError()
+  // (length_angle.h) derives both from a length tolerance. kSplineSubdivide ignores mergingAngle
+  // but it is validated all the same.
+  double subdivisionAngle = degrees(140.0);
+  double mergingAngle = degrees(160.0);
+
+  // Bounds on the control point count for the spline variants: merging never goes below
+  // minControlPoints (>= degree + 1), subdivision never above maxControlPoints; the initial count
+  // segmentCount + 1 must lie in between. kPolyline ignores them.
+  int minControlPoints = 4;
+  int maxControlPoints = 256;
+
+  // A merge is accepted only if it leaves no affected corner below subdivisionAngle, so that a
+  // merge never provokes a subdivision at the next check (no flicker). Off = [B]'s plain rule.
+  bool guardMerges = true;
+
+  // Gauss–Legendre points per knot span for the per-step curve length (1..kMaxGaussPoints). The
+  // integrand is smooth on a span; 8 points give ~1e-9 relative on the shapes a rope takes.
+  int lengthGaussPoints = 8;
+
+  // Convenience: set both thresholds from degrees.
+  void setThresholdsDegrees(double subdivisionDegrees, double mergingDegrees) {
+    subdivisionAngle = degrees(subdivisionDegrees);
+    mergingAngle = degrees(mergingDegrees);
+  }
+};
+
+// Throws InvalidArgument naming "settings.<field>" and the value for anything out of range.
+void validateTractrixSettings(const TractrixSettings& settings);
+
+}  // namespace rope

@@ -7,21 +7,10 @@
 #include "rope/common/error.h"
 #include "rope/spline/bspline_basis.h"
 #include "rope/spline/curve_split.h"
+#include "rope/spline/point_validation.h"
 
 namespace rope {
 namespace {
-
-void requireFinitePoint(const std::string& name, const Vec3& point) {
-  for (int c = 0; c < 3; ++c) {
-    if (!std::isfinite(point[c])) {
-      throw InvalidArgument(name + "[" + std::to_string(c) + "]", formatValue(point[c]), "must be finite");
-    }
-  }
-}
-
-void requireFinitePoints(const std::string& name, const PointList& points) {
-  for (size_t i = 0; i < points.size(); ++i) requireFinitePoint(name + "[" + std::to_string(i) + "]", points[i]);
-}
 
 // Sum over the d+1 non-zero basis functions of span basis.span, up to the given derivative order.
 void accumulate(const BasisValues& basis, const PointList& points, int derivatives, CurvePoint& out) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "rope/common/error.h"
+#include "rope/spline/point_validation.h"
 
 namespace rope {
 namespace {
@@ -16,15 +17,7 @@ void sides(const PointList& points, int i, Vec3& a, Vec3& b) {
     throw InvalidArgument("i", std::to_string(i),
                           "must be an interior vertex in 1..points.size()-2 = " + std::to_string(n - 2));
   }
-  for (int j = i - 1; j <= i + 1; ++j) {
-    for (int c = 0; c < 3; ++c) {
-      const double value = points[static_cast<size_t>(j)][c];
-      if (!std::isfinite(value)) {
-        throw InvalidArgument("points[" + std::to_string(j) + "][" + std::to_string(c) + "]", formatValue(value),
-                              "must be finite");
-      }
-    }
-  }
+  requireFinitePoints("points", points, static_cast<size_t>(i - 1), static_cast<size_t>(i + 1));
   a = points[static_cast<size_t>(i)] - points[static_cast<size_t>(i - 1)];
   b = points[static_cast<size_t>(i + 1)] - points[static_cast<size_t>(i)];
 }
@@ -71,15 +64,9 @@ double angleFromBendMeasure(double bendMeasure) {
 }
 
 double polygonLength(const PointList& points) {
+  requireFinitePoints("points", points);
   double length = 0.0;
   for (size_t i = 1; i < points.size(); ++i) {
-    for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(points[i][c]) || !std::isfinite(points[i - 1][c])) {
-        const size_t bad = std::isfinite(points[i - 1][c]) ? i : i - 1;
-        throw InvalidArgument("points[" + std::to_string(bad) + "][" + std::to_string(c) + "]",
-                              formatValue(points[bad][c]), "must be finite");
-      }
-    }
     length += (points[i] - points[i - 1]).norm();
   }
   return length;

@@ -8,6 +8,7 @@
 
 #include "rope/common/error.h"
 #include "rope/spline/bspline_basis.h"
+#include "rope/spline/point_validation.h"
 
 namespace rope {
 namespace {
@@ -62,14 +63,7 @@ Interpolation interpolatePolyline(const PointList& points, int degree, Parametri
     throw InvalidArgument("points.size()", std::to_string(count),
                           "must be >= degree+1 = " + std::to_string(degree + 1));
   }
-  for (int i = 0; i < count; ++i) {
-    for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(points[static_cast<size_t>(i)][c])) {
-        throw InvalidArgument("points[" + std::to_string(i) + "][" + std::to_string(c) + "]",
-                              formatValue(points[static_cast<size_t>(i)][c]), "must be finite");
-      }
-    }
-  }
+  requireFinitePoints("points", points);
   // Chord lengths; a repeated point has no parameter interval and makes the system singular.
   std::vector<double> chord(static_cast<size_t>(count), 0.0);
   double total = 0.0;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "rope/common/error.h"
+#include "rope/spline/point_validation.h"
 
 namespace rope {
 
@@ -44,6 +45,9 @@ KnotInsertion insertKnot(KnotVector& knots, PointList& points, double s) {
                               std::to_string(knots.controlPointCount()));
   }
   const KnotInsertion plan = planKnotInsertion(knots, s);
+  // The map reads q_{k-d} .. q_k; an infinite one times a zero weight would make NaN.
+  requireFinitePoints("points", points, static_cast<std::size_t>(plan.span - plan.degree),
+                      static_cast<std::size_t>(plan.span));
   knots.insertValue(s);
   plan.apply(points);
   return plan;

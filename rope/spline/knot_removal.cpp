@@ -9,6 +9,7 @@
 #include "rope/spline/bspline_basis.h"
 #include "rope/spline/gauss_legendre.h"
 #include "rope/spline/knot_insertion.h"
+#include "rope/spline/point_validation.h"
 
 namespace rope {
 namespace {
@@ -101,15 +102,8 @@ KnotRemoval planKnotRemoval(const KnotVector& knots, const PointList& points, do
   // Work on the window q_{k-d} .. q_{k+1}, the only points the sweeps read or write.
   const int lo = k - d;
   // Every point the sweeps and the length integrals read must be finite (the traps catch NaN).
-  for (int i = std::max(0, lo - d); i <= std::min(n - 1, k + d + 1); ++i) {
-    for (int c = 0; c < 3; ++c) {
-      const double value = points[static_cast<size_t>(i)][c];
-      if (!std::isfinite(value)) {
-        throw InvalidArgument("points[" + std::to_string(i) + "][" + std::to_string(c) + "]", formatValue(value),
-                              "must be finite");
-      }
-    }
-  }
+  requireFinitePoints("points", points, static_cast<std::size_t>(std::max(0, lo - d)),
+                     static_cast<std::size_t>(std::min(n - 1, k + d + 1)));
   const PointList window(points.begin() + lo, points.begin() + k + 2);
   KnotRemoval local = removal;
   local.span = d;

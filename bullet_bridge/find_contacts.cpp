@@ -1,0 +1,84 @@
+#include "bullet_bridge/find_contacts.h"
+
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
+#include <BulletCollision/CollisionShapes/btConcaveShape.h>
+#include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
+
+#include <string>
+
+#include "bullet_bridge/concave_contact.h"
+#include "bullet_bridge/convex_contact.h"
+#include "bullet_bridge/convex_support.h"
+#include "rope/common/error.h"
+
+namespace rope::bullet {
+
+namespace {
+
+std::string shapeTypeName(const btCollisionShape& shape) {
+  const char* name = shape.getName();
+  return std::string(name != nullptr ? name : "unnamed") + " (shape type " +
+         std::to_string(shape.getShapeType()) + ")";
+}
+
+// Throws for the first unsupported shape in the tree, before any contact is computed, so that a
+// failing call leaves `out` unchanged.
+void requireSupported(const btCollisionShape& shape) {
+  if (shape.getShapeType() == COMPOUND_SHAPE_PROXYTYPE) {
+    const auto& compound = static_cast<const btCompoundShape&>(shape);
+    for (int i = 0; i < compound.getNumChildShapes(); ++i) {
+      requireSupported(*compound.getChildShape(i));
+    }
+    return;
+  }
+  if (shape.isConcave()) return;
+  ConvexCore core;
+  if (!makeConvexCore(shape, core)) {
+    throw InvalidArgument("object.shape", shapeTypeName(shape),
+                          "unsupported collision shape for rope contacts");
+  }
+}
+
+void appendContacts(const Capsule& capsule, const btCollisionShape& shape,
+                    const btTransform& shapeToWorld, btScalar margin, int childIndex,
+                    std::vector<Contact>& out) {
+  const std::size_t first = out.size();
+  if (shape.getShapeType() == COMPOUND_SHAPE_PROXYTYPE) {
+    const auto& compound = static_cast<const btCompoundShape&>(shape);
+    for (int i = 0; i < compound.getNumChildShapes(); ++i) {
+      appendContacts(capsule, *compound.getChildShape(i),
+                     shapeToWorld * compound.getChildTransform(i), margin,
+                     childIndex < 0 ? i : childIndex, out);
+    }
+    return;
+  }
+  if (shape.getShapeType() == STATIC_PLANE_PROXYTYPE) {
+    planeContacts(capsule, static_cast<const btStaticPlaneShape&>(shape), shapeToWorld, margin,
+                  out);
+  } else if (shape.isConcave()) {
+    triangleMeshContacts(capsule, static_cast<const btConcaveShape&>(shape), shapeToWorld, margin,
+                         out);
+  } else {
+    ConvexCore core;
+    makeConvexCore(shape, core);  // supported: checked by requireSupported
+    Contact contact;
+    if (convexContact(capsule, core, shapeToWorld, margin, contact)) out.push_back(contact);
+  }
+  for (std::size_t i = first; i < out.size(); ++i) out[i].childIndex = childIndex;
+}
+
+}  // namespace
+
+void findContacts(const Capsule& capsule, const btCollisionObject& object, double margin,
+                  std::vector<Contact>& out) {
+  requireValidCapsule("capsule", capsule);
+  requireNonNegative("margin", margin);
+  const btCollisionShape* shape = object.getCollisionShape();
+  if (shape == nullptr) {
+    throw InvalidArgument("object.shape", "null", "the collision object has no shape");
+  }
+  requireSupported(*shape);
+  appendContacts(capsule, *shape, object.getWorldTransform(), btScalar(margin), -1, out);
+}
+
+}  // namespace rope::bullet

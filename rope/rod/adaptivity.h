@@ -1,0 +1,43 @@
+#pragma once
+// Adaptivity criteria on the control polygon ([A] §4, [B] §3, spec §3). Pure functions; Rod::step()
+// applies them after each integration step (rod_adaptivity.cpp).
+//
+// Insertion: the polygon side q_i q_{i+1} is refined when the bend measure c ([A] eq. 13) at either of
+// its ends exceeds the insertion threshold. [A] asks for both ends; either is used here because a
+// single sharp corner (at a pin or a point load) must be refined too. The side corresponds to the
+// parameter interval between the Greville abscissae of q_i and q_{i+1}; the knot goes to the middle of
+// the knot span that contains the middle of that interval.
+// Removal: an interior knot is removed when the polygon is straight around every control point the
+// removal changes (c < removal threshold), the removal error is within the bound, and the polygon after
+// removal would not immediately qualify for re-insertion (c < insertion threshold): the hysteresis
+// between the two thresholds plus this look-ahead keeps knots from flickering.
+
+#include <vector>
+
+#include "rope/common/types.h"
+#include "rope/spline/knot_removal.h"
+#include "rope/spline/knot_vector.h"
+
+namespace rope {
+
+// Greville abscissa of control point i: (s_{i+1} + ... + s_{i+d}) / d.
+double grevilleAbscissa(const KnotVector& knots, int i);
+
+// bend[i] = c_i for 1 <= i <= n-2, 0 at the ends; bend is resized to points.size().
+void bendMeasures(const PointList& points, std::vector<double>& bend);
+
+// Knot spans (ascending, unique) whose middle gets a knot by the curvature criterion.
+void curvatureInsertionSpans(const KnotVector& knots, const std::vector<double>& bend,
+                             double insertThreshold, std::vector<int>& spans);
+
+// The values a removal plan would produce around the removed knot, and what they would be with the
+// knot inserted again: max distance = the removal's error for this per-control-point field (by the
+// convex hull property a bound on the field's change along the curve). Cost O(d).
+struct LocalRemoval {
+  int offset = 0;          // global index of after[0]
+  PointList after;         // removed values at global indices offset .. offset + after.size() - 1
+  double error = 0.0;
+};
+LocalRemoval localRemoval(const KnotRemoval& plan, const PointList& values);
+
+}  // namespace rope

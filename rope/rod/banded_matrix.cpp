@@ -1,0 +1,109 @@
+#include "rope/rod/banded_matrix.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rope {
+
+void SymmetricBandedMatrix::reset(int blockCount, int blockSize, int blockBandwidth) {
+  blockSize_ = blockSize;
+  size_ = blockCount * blockSize;
+  bandwidth_ = blockSize * (blockBandwidth + 1) - 1;
+  const size_t needed = static_cast<size_t>(size_) * static_cast<size_t>(bandwidth_ + 1);
+  if (band_.size() < needed) band_.resize(needed);
+  setZero();
+}
+
+void SymmetricBandedMatrix::setZero() {
+  const size_t used = static_cast<size_t>(size_) * static_cast<size_t>(bandwidth_ + 1);
+  std::fill(band_.begin(), band_.begin() + static_cast<std::ptrdiff_t>(used), 0.0);
+  factorized_ = false;
+}
+
+double SymmetricBandedMatrix::entry(int row, int col) const {
+  if (row < col) std::swap(row, col);
+  if (row - col > bandwidth_) return 0.0;
+  return at(row, col);
+}
+
+void SymmetricBandedMatrix::addBlock(int i, int j, const Eigen::Matrix3d& block) {
+  const int r0 = 3 * i;
+  const int c0 = 3 * j;
+  for (int a = 0; a < 3; ++a) {
+    const int bEnd = (i == j) ? a + 1 : 3;
+    for (int b = 0; b < bEnd; ++b) at(r0 + a, c0 + b) += block(a, b);
+  }
+}
+
+void SymmetricBandedMatrix::addScaledIdentity(int i, int j, double value) {
+  const int r0 = blockSize_ * i;
+  const int c0 = blockSize_ * j;
+  for (int a = 0; a < blockSize_; ++a) at(r0 + a, c0 + a) += value;
+}
+
+void SymmetricBandedMatrix::multiply(const double* x, double* y) const {
+  for (int r = 0; r < size_; ++r) y[r] = 0.0;
+  for (int r = 0; r < size_; ++r) {
+    const int c0 = std::max(0, r - bandwidth_);
+    const double* row = &band_[static_cast<size_t>(index(r, c0))];
+    double sum = row[r - c0] * x[r];
+    for (int c = c0; c < r; ++c) {
+      sum += row[c - c0] * x[c];
+      y[c] += row[c - c0] * x[r];
+    }
+    y[r] += sum;
+  }
+}
+
+bool SymmetricBandedMatrix::factorize() {
+  const int w = bandwidth_;
+  for (int r = 0; r < size_; ++r) {
+    const int c0 = std::max(0, r - w);
+    double* rowR = &band_[static_cast<size_t>(index(r, c0))];  // rowR[c - c0] = L(r, c)
+    for (int c = c0; c <= r; ++c) {
+      // L(r, c) = (A(r, c) - sum_k L(r, k) L(c, k)) / L(c, c), k from max(c0, c - w) = c0 to c - 1.
+      const int k0 = std::max(c0, c - w);
+      const double* rowC = &band_[static_cast<size_t>(index(c, k0))];  // rowC[k - k0] = L(c, k)
+      double sum = rowR[c - c0];
+      for (int k = k0; k < c; ++k) sum -= rowR[k - c0] * rowC[k - k0];
+      if (c < r) {
+        rowR[c - c0] = sum / band_[static_cast<size_t>(index(c, c))];
+      } else {
+        // isfinite first: an ordered comparison with NaN would raise FE_INVALID.
+        if (!std::isfinite(sum) || sum <= 0.0) return false;
+        rowR[c - c0] = std::sqrt(sum);
+      }
+    }
+  }
+  factorized_ = true;
+  return true;
+}
+
+void SymmetricBandedMatrix::forwardSubstitute(double* x, int firstRow) const {
+  const int w = bandwidth_;
+  for (int r = firstRow; r < size_; ++r) {
+    const int c0 = std::max(firstRow, r - w);
+    const double* row = &band_[static_cast<size_t>(r) * static_cast<size_t>(w + 1)];  // row[c - r + w] = L(r, c)
+    double sum = x[r];
+    for (int c = c0; c < r; ++c) sum -= row[c - r + w] * x[c];
+    x[r] = sum / row[w];
+  }
+}
+
+void SymmetricBandedMatrix::backSubstitute(double* x) const {
+  const int w = bandwidth_;
+  for (int r = size_ - 1; r >= 0; --r) {
+    const double value = x[r] / band_[static_cast<size_t>(index(r, r))];
+    x[r] = value;
+    const int c0 = std::max(0, r - w);
+    const double* row = &band_[static_cast<size_t>(index(r, c0))];
+    for (int c = c0; c < r; ++c) x[c] -= row[c - c0] * value;
+  }
+}
+
+void SymmetricBandedMatrix::solve(double* x) const {
+  forwardSubstitute(x, 0);
+  backSubstitute(x);
+}
+
+}  // namespace rope

@@ -1,0 +1,61 @@
+#pragma once
+// Symmetric block-banded matrix with its in-place banded Cholesky factorisation (spec §2: "a banded
+// Cholesky/LDL^T solves it in O(n)"). Blocks are b x b (b = 1 for the scalar mass matrix, b = 3 for
+// the rod's system); blocks (i, j) with |i - j| <= d may be non-zero, so in scalars the half bandwidth
+// is w = b (d + 1) - 1. Only the lower band is stored: N (w + 1) doubles, no dense N x N anywhere.
+// Factorising costs O(N w^2), a solve O(N w). Failure (a non-positive or non-finite pivot) is
+// reported, never turned into NaN.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace rope {
+
+class SymmetricBandedMatrix {
+ public:
+  SymmetricBandedMatrix() = default;
+  // Zero matrix of blockCount x blockCount blocks of size blockSize with block half bandwidth
+  // blockBandwidth. Reuses the storage when it is big enough (no allocation in a steady state).
+  void reset(int blockCount, int blockSize, int blockBandwidth);
+  void setZero();
+
+  int size() const { return size_; }                 // N = blockCount * blockSize
+  int halfBandwidth() const { return bandwidth_; }   // w
+  int blockSize() const { return blockSize_; }
+  bool factorized() const { return factorized_; }
+
+  // Scalar entry (row >= col, row - col <= w); only before factorize().
+  double& at(int row, int col) { return band_[index(row, col)]; }
+  double at(int row, int col) const { return band_[index(row, col)]; }
+  // Symmetric read of any entry (zero outside the band), for tests and diagnostics.
+  double entry(int row, int col) const;
+  // Adds a 3x3 block at block (i, j), i >= j (blockSize 3). For i == j only the lower triangle is read.
+  void addBlock(int i, int j, const Eigen::Matrix3d& block);
+  // Adds value * I to block (i, j), i >= j.
+  void addScaledIdentity(int i, int j, double value);
+
+  // y = A x (x, y of length N, distinct); only before factorize().
+  void multiply(const double* x, double* y) const;
+
+  // In-place Cholesky A = L L^T. Returns false (and leaves the matrix unusable until reset) if a
+  // pivot is not finite or not positive: the matrix is not positive definite.
+  bool factorize();
+  // With the factor: x <- L^-1 x, starting at firstRow (entries above it must be zero: a sparse
+  // right-hand side skips the leading rows, which makes constraint columns at the far end O(1)).
+  void forwardSubstitute(double* x, int firstRow = 0) const;
+  // x <- L^-T x.
+  void backSubstitute(double* x) const;
+  // x <- A^-1 x.
+  void solve(double* x) const;
+
+ private:
+  int index(int row, int col) const { return row * (bandwidth_ + 1) + (col - row + bandwidth_); }
+  int size_ = 0;
+  int blockSize_ = 1;
+  int bandwidth_ = 0;
+  bool factorized_ = false;
+  std::vector<double> band_;  // row-major, w + 1 entries per row: columns row - w .. row
+};
+
+}  // namespace rope

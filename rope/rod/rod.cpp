@@ -1,0 +1,427 @@
+#include "rope/rod/rod.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "rope/common/error.h"
+#include "rope/rod/bending_energy.h"
+#include "rope/rod/stretching_energy.h"
+#include "rope/spline/arc_length.h"
+#include "rope/spline/bspline_basis.h"
+#include "rope/spline/bspline_curve.h"
+#include "rope/spline/curve_interpolation.h"
+
+namespace rope {
+
+namespace {
+
+void requireFiniteVector(const std::string& name, const Vec3& value) {
+  for (int axis = 0; axis < 3; ++axis) requireFinite(name + "[" + std::to_string(axis) + "]", value[axis]);
+}
+
+void requireFiniteMatrix(const std::string& name, const Eigen::Matrix3d& value) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      requireFinite(name + "(" + std::to_string(r) + "," + std::to_string(c) + ")", value(r, c));
+}
+
+void requirePoints(const std::string& name, const PointList& points, size_t count) {
+  if (points.size() != count) {
+    throw InvalidArgument(name + ".size()", std::to_string(points.size()),
+                          "must be " + std::to_string(count));
+  }
+  for (size_t i = 0; i < points.size(); ++i) requireFiniteVector(name + "[" + std::to_string(i) + "]", points[i]);
+}
+
+bool allFinite(const PointList& points) {
+  for (const Vec3& p : points)
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) return false;
+  return true;
+}
+
+// Greville abscissae of a straight rest curve along x: C0(s) = s e_x exactly (linear precision), so
+// l0'(s) = 1 and s is the rest arclength.
+PointList straightRest(const KnotVector& knots) {
+  const int d = knots.degree();
+  PointList rest(static_cast<size_t>(knots.controlPointCount()), Vec3::Zero());
+  for (int i = 0; i < knots.controlPointCount(); ++i) {
+    double sum = 0.0;
+    for (int k = 1; k <= d; ++k) sum += knots[i + k];
+    rest[static_cast<size_t>(i)].x() = sum / d;
+  }
+  return rest;
+}
+
+}  // namespace
+
+// ---- construction ----
+
+Rod::Rod(const RodSettings& settings, KnotVector knots, PointList points, PointList velocities,
+         PointList rest, int gaussCount)
+    : settings_(settings),
+      knots_(std::move(knots)),
+      points_(std::move(points)),
+      velocities_(std::move(velocities)),
+      rest_(std::move(rest)) {
+  integrals_.build(knots_, rest_, settings_.effectiveLinearDensity(), settings_.effectiveBendingStiffness(),
+                   gaussCount);
+}
+
+Rod Rod::fromSegment(const RodSettings& settings, const Vec3& a, const Vec3& b) {
+  settings.validate();
+  requireFiniteVector("a", a);
+  requireFiniteVector("b", b);
+  if (!((b - a).norm() > 0.0)) throw InvalidArgument("b", "a", "must differ from a");
+  const int n = settings.initialControlPoints;
+  KnotVector knots = KnotVector::clampedUniform(settings.degree, n, 0.0, settings.restLength);
+  PointList rest = straightRest(knots);
+  PointList points(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const double u = rest[static_cast<size_t>(i)].x() / settings.restLength;
+    points[static_cast<size_t>(i)] = a + u * (b - a);
+  }
+  return Rod(settings, std::move(knots), std::move(points), PointList(static_cast<size_t>(n), Vec3::Zero()),
+             std::move(rest), RodIntegrals::exactGaussCount(settings.degree));
+}
+
+Rod Rod::fromCurve(const RodSettings& settings, const KnotVector& knots, const PointList& points,
+                   RestShape restShape) {
+  PointList rest = points;
+  if (restShape == RestShape::kScaledToRestLength) {
+    const double length = arcLength(knots, points, knots.validBegin(), knots.validEnd());
+    if (!(length > 0.0)) throw InvalidArgument("points", "length 0", "curve must have a length");
+    const double scale = settings.restLength / length;
+    for (Vec3& p : rest) p *= scale;
+  }
+  // A curved rest metric makes the integrands non-polynomial: 4 more points than the exact rule keep
+  // the quadrature error well below the discretisation error.
+  const int gauss = RodIntegrals::exactGaussCount(settings.degree) + 4;
+  return Rod(settings, knots, points, PointList(points.size(), Vec3::Zero()), std::move(rest), gauss);
+}
+
+Rod Rod::fromPolyline(const RodSettings& settings, const PointList& points, RestShape rest) {
+  settings.validate();
+  const Interpolation interpolation = interpolatePolyline(points, settings.degree);
+  return fromCurve(settings, interpolation.curve.knots(), interpolation.curve.controlPoints(), rest);
+}
+
+Rod Rod::fromControlPoints(const RodSettings& settings, const KnotVector& knots, const PointList& points,
+                           RestShape rest) {
+  settings.validate();
+  if (knots.degree() != settings.degree) {
+    throw InvalidArgument("knots.degree()", std::to_string(knots.degree()), "must equal settings.degree");
+  }
+  requirePoints("points", points, static_cast<size_t>(knots.controlPointCount()));
+  return fromCurve(settings, knots, points, rest);
+}
+
+Rod Rod::fromControlPoints(const RodSettings& settings, const KnotVector& knots, const PointList& points,
+                           const PointList& restPoints) {
+  settings.validate();
+  if (knots.degree() != settings.degree) {
+    throw InvalidArgument("knots.degree()", std::to_string(knots.degree()), "must equal settings.degree");
+  }
+  requirePoints("points", points, static_cast<size_t>(knots.controlPointCount()));
+  requirePoints("restPoints", restPoints, static_cast<size_t>(knots.controlPointCount()));
+  const int gauss = RodIntegrals::exactGaussCount(settings.degree) + 4;
+  return Rod(settings, knots, points, PointList(points.size(), Vec3::Zero()), restPoints, gauss);
+}
+
+// ---- state access ----
+
+void Rod::validateParameter(double s) const {
+  requireFinite("s", s);
+  if (!knots_.contains(s)) {
+    throw InvalidArgument("s", formatValue(s),
+                          "must be in [" + formatValue(beginParameter()) + ", " + formatValue(endParameter()) + "]");
+  }
+}
+
+Vec3 Rod::position(double s) const { return curvePosition(knots_, points_, s); }
+Vec3 Rod::velocity(double s) const { return curvePosition(knots_, velocities_, s); }
+
+Vec3 Rod::tangent(double s) const {
+  const Vec3 derivative = evaluateCurve(knots_, points_, s).firstDerivative;
+  const double norm = derivative.norm();
+  return norm > 0.0 ? Vec3(derivative / norm) : Vec3(Vec3::Zero());
+}
+
+double Rod::length() const { return arcLength(knots_, points_, beginParameter(), endParameter()); }
+
+double Rod::restLength() const {
+  double sum = 0.0;
+  for (int j = 0; j < integrals_.spanCount(); ++j) sum += integrals_.span(j).restLength;
+  return sum;
+}
+
+double Rod::maxStrain() const { return rope::maxStrain(integrals_, points_); }
+
+double Rod::mass() const {
+  double sum = 0.0;
+  for (int j = 0; j < integrals_.spanCount(); ++j) {
+    const SpanView span = integrals_.span(j);
+    for (int a = 0; a < span.localCount; ++a) sum += span.gravity[a];
+  }
+  return sum;
+}
+
+Vec3 Rod::momentum() const {
+  Vec3 sum = Vec3::Zero();
+  for (int j = 0; j < integrals_.spanCount(); ++j) {
+    const SpanView span = integrals_.span(j);
+    for (int a = 0; a < span.localCount; ++a) sum += span.gravity[a] * velocities_[static_cast<size_t>(j + a)];
+  }
+  return sum;
+}
+
+double Rod::kineticEnergy() const {
+  double sum = 0.0;
+  for (int j = 0; j < integrals_.spanCount(); ++j) {
+    const SpanView span = integrals_.span(j);
+    for (int a = 0; a < span.localCount; ++a)
+      for (int b = 0; b < span.localCount; ++b)
+        sum += 0.5 * span.mass[a * span.localCount + b] *
+               velocities_[static_cast<size_t>(j + a)].dot(velocities_[static_cast<size_t>(j + b)]);
+  }
+  return sum;
+}
+
+double Rod::stretchingEnergy() const {
+  return rope::stretchingEnergy(integrals_, points_, settings_.axialStiffness());
+}
+
+double Rod::bendingEnergy() const { return rope::bendingEnergy(integrals_, points_); }
+
+double Rod::gravityEnergy() const {
+  double sum = 0.0;
+  for (int j = 0; j < integrals_.spanCount(); ++j) {
+    const SpanView span = integrals_.span(j);
+    for (int a = 0; a < span.localCount; ++a)
+      sum -= span.gravity[a] * settings_.gravity.dot(points_[static_cast<size_t>(j + a)]);
+  }
+  return sum;
+}
+
+void Rod::setControlPoints(const PointList& points) {
+  requirePoints("points", points, points_.size());
+  points_ = points;
+}
+
+void Rod::setVelocities(const PointList& velocities) {
+  requirePoints("velocities", velocities, velocities_.size());
+  velocities_ = velocities;
+}
+
+// ---- pins ----
+
+int Rod::findPin(int id) const {
+  for (size_t i = 0; i < pins_.size(); ++i)
+    if (pins_[i].id == id) return static_cast<int>(i);
+  throw InvalidArgument("id", std::to_string(id), "no such pin");
+}
+
+int Rod::pin(double s, const Vec3& target) {
+  validateParameter(s);
+  requireFiniteVector("target", target);
+  for (const Pin& other : pins_) {
+    if (other.parameter == s) throw InvalidArgument("s", formatValue(s), "a pin is already there");
+  }
+  if (static_cast<int>(pins_.size()) + 1 > controlPointCount()) {
+    throw InvalidArgument("pins", std::to_string(pins_.size() + 1),
+                          "more pins than control points (" + std::to_string(controlPointCount()) + ")");
+  }
+  Pin added;
+  added.id = nextPinId_++;
+  added.parameter = s;
+  added.target = target;
+  pins_.push_back(added);
+  return added.id;
+}
+
+int Rod::pin(double s) {
+  validateParameter(s);
+  return pin(s, position(s));
+}
+
+void Rod::setPinTarget(int id, const Vec3& target) {
+  const int index = findPin(id);
+  requireFiniteVector("target", target);
+  pins_[static_cast<size_t>(index)].target = target;
+}
+
+void Rod::releasePin(int id) {
+  const int index = findPin(id);
+  pins_.erase(pins_.begin() + index);
+}
+
+// ---- loads ----
+
+void Rod::addForce(double s, const Vec3& force) {
+  validateParameter(s);
+  requireFiniteVector("force", force);
+  loads_.push_back({s, force, false});
+}
+
+void Rod::addImpulse(double s, const Vec3& impulse) {
+  validateParameter(s);
+  requireFiniteVector("impulse", impulse);
+  loads_.push_back({s, impulse, true});
+}
+
+void Rod::addSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
+                    const Eigen::Matrix3d& damping) {
+  validateParameter(s);
+  requireFiniteVector("force", force);
+  requireFiniteMatrix("stiffness", stiffness);
+  requireFiniteMatrix("damping", damping);
+  // Only the symmetric part is meaningful for a potential/dissipative interaction.
+  springs_.push_back({s, force, 0.5 * (stiffness + stiffness.transpose()), 0.5 * (damping + damping.transpose())});
+}
+
+void Rod::clearLoads() {
+  loads_.clear();
+  springs_.clear();
+}
+
+// ---- step ----
+
+StepReport Rod::step(double h) {
+  requirePositive("h", h);
+  StepReport report;
+  interactions_.clear();
+  for (const PointLoad& load : loads_) interactions_.push_back(load.parameter);
+  for (const Spring& spring : springs_) interactions_.push_back(spring.parameter);
+  if (assembleAndSolve(h, report)) {
+    points_.swap(newPoints_);
+    velocities_.swap(newVelocities_);
+    for (const Pin& p : pins_) interactions_.push_back(p.parameter);
+    adapt(report);
+  }
+  clearLoads();
+  report.controlPoints = controlPointCount();
+  return report;
+}
+
+bool Rod::assembleAndSolve(double h, StepReport& report) {
+  const int n = controlPointCount();
+  const int d = degree();
+  const int local = d + 1;
+  const double axial = settings_.axialStiffness();
+  const double alpha = settings_.massDamping;
+  const double beta = settings_.stiffnessDamping;
+  const double massScale = 1.0 + h * alpha;    // M + hD + h^2 K with D = alpha M + beta K
+  const double stiffScale = h * h + h * beta;
+  const Vec3 gravity = settings_.gravity;
+
+  system_.reset(n, 3, d);
+  force_.assign(static_cast<size_t>(n), Vec3::Zero());
+  stiffnessTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
+  massTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
+
+  Eigen::Matrix3d blocks[(kMaxDegree + 1) * (kMaxDegree + 1)];
+  for (int j = 0; j < integrals_.spanCount(); ++j) {
+    const SpanView span = integrals_.span(j);
+    const Vec3* q = &points_[static_cast<size_t>(j)];
+    const Vec3* v = &velocities_[static_cast<size_t>(j)];
+    Vec3* f = &force_[static_cast<size_t>(j)];
+    Vec3* kv = &stiffnessTimesV_[static_cast<size_t>(j)];
+    Vec3* mv = &massTimesV_[static_cast<size_t>(j)];
+    stretchingSpan(span, q, axial, StiffnessMode::kClamped, f, blocks);
+    for (int a = 0; a < local; ++a) {
+      Vec3 fa = span.gravity[a] * gravity;
+      for (int b = 0; b < local; ++b) fa -= span.bending[a * local + b] * q[b];
+      f[a] += fa;
+    }
+    for (int a = 0; a < local; ++a) {
+      for (int b = 0; b <= a; ++b) {
+        Eigen::Matrix3d& k = blocks[a * local + b];
+        k.diagonal().array() += span.bending[a * local + b];
+        const double m = span.mass[a * local + b];
+        kv[a] += k * v[b];
+        mv[a] += m * v[b];
+        if (a != b) {
+          kv[b] += k * v[a];  // blocks are symmetric
+          mv[b] += m * v[a];
+        }
+        Eigen::Matrix3d entry = stiffScale * k;
+        entry.diagonal().array() += massScale * m;
+        system_.addBlock(j + a, j + b, entry);
+      }
+    }
+  }
+
+  BasisValues basis;
+  for (const PointLoad& load : loads_) {
+    const int k = knots_.findSpan(load.parameter);
+    evaluateBasis(knots_, k, load.parameter, 0, basis);
+    const Vec3 force = load.impulse ? Vec3(load.force / h) : load.force;
+    for (int a = 0; a < local; ++a) force_[static_cast<size_t>(k - d + a)] += basis.d[0][static_cast<size_t>(a)] * force;
+  }
+  for (const Spring& spring : springs_) {
+    const int k = knots_.findSpan(spring.parameter);
+    evaluateBasis(knots_, k, spring.parameter, 0, basis);
+    const int first = k - d;
+    Vec3 u = Vec3::Zero();
+    for (int a = 0; a < local; ++a) u += basis.d[0][static_cast<size_t>(a)] * velocities_[static_cast<size_t>(first + a)];
+    const Vec3 force = spring.force - h * (spring.stiffness * u);
+    const Eigen::Matrix3d matrix = h * h * spring.stiffness + h * spring.damping;
+    for (int a = 0; a < local; ++a) {
+      const double ba = basis.d[0][static_cast<size_t>(a)];
+      force_[static_cast<size_t>(first + a)] += ba * force;
+      for (int b = 0; b <= a; ++b) system_.addBlock(first + a, first + b, (ba * basis.d[0][static_cast<size_t>(b)]) * matrix);
+    }
+  }
+
+  rhs_.resize(static_cast<size_t>(3 * n));
+  for (int i = 0; i < n; ++i) {
+    const Vec3 r = h * (force_[static_cast<size_t>(i)] - alpha * massTimesV_[static_cast<size_t>(i)] -
+                        (beta + h) * stiffnessTimesV_[static_cast<size_t>(i)]);
+    for (int axis = 0; axis < 3; ++axis) rhs_[static_cast<size_t>(3 * i + axis)] = r[axis];
+  }
+  if (!system_.factorize()) {
+    report.ok = false;
+    report.failure = "factorisation failed: the step matrix is not positive definite or not finite";
+    return false;
+  }
+
+  rows_.resize(pins_.size());
+  for (size_t p = 0; p < pins_.size(); ++p) {
+    const Pin& pinned = pins_[p];
+    const int k = knots_.findSpan(pinned.parameter);
+    evaluateBasis(knots_, k, pinned.parameter, 0, basis);
+    ConstraintRows& row = rows_[p];
+    row.first = k - d;
+    row.count = local;
+    Vec3 position = Vec3::Zero();
+    Vec3 velocity = Vec3::Zero();
+    for (int a = 0; a < local; ++a) {
+      row.basis[a] = basis.d[0][static_cast<size_t>(a)];
+      position += row.basis[a] * points_[static_cast<size_t>(row.first + a)];
+      velocity += row.basis[a] * velocities_[static_cast<size_t>(row.first + a)];
+    }
+    row.rhs = (pinned.target - position) / h - velocity;
+  }
+  if (!solver_.solve(system_, rows_, rhs_.data())) {
+    report.ok = false;
+    report.failure = "pin constraints are dependent or not finite";
+    return false;
+  }
+
+  newPoints_.resize(static_cast<size_t>(n));
+  newVelocities_.resize(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const size_t u = static_cast<size_t>(i);
+    const Vec3 dv(rhs_[3 * u], rhs_[3 * u + 1], rhs_[3 * u + 2]);
+    newVelocities_[u] = velocities_[u] + dv;
+    newPoints_[u] = points_[u] + h * newVelocities_[u];
+  }
+  if (!allFinite(newPoints_) || !allFinite(newVelocities_)) {
+    report.ok = false;
+    report.failure = "the step produced a non-finite state";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace rope

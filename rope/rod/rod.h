@@ -1,0 +1,194 @@
+#pragma once
+// The dynamic adaptive rod ([A] §3–5, spec §2–3): a B-spline curve whose control points are the
+// degrees of freedom, with mass and gravity from a continuous linear density, Green–Lagrange
+// stretching ([A] eq. 11), a continuous bending energy (bending_energy.h), a linearised backward-Euler
+// step solved by a block-banded Cholesky in O(n), pins by Lagrange multipliers, knot insertion and
+// removal after each step, and cutting. Knows nothing of Bullet.
+//
+// Units: metres, seconds, kilograms, newtons. The curve parameter s runs over
+// [beginParameter(), endParameter()]; for ropes created from a segment it is the rest arclength.
+//
+// Step: (M + hD + h^2 K) dv = h (F + f_ext - D v - h K v), v += dv, q += h v (spec §2), with
+// D = massDamping M + stiffnessDamping K (Rayleigh), K the stretching stiffness with the Gauss–Newton
+// clamp plus the constant bending stiffness, and pins imposed on the end-of-step positions.
+// Then adaptivity ([A] §4): knots at interaction points, insertion where the control polygon bends
+// (included angle < insertAngle), removal where it is straight (> removeAngle) and the removal error
+// is within removalErrorBound; counts stay within [minControlPoints, maxControlPoints].
+//
+// Failure: bad input throws InvalidArgument and changes nothing. A step whose factorisation fails or
+// whose result is not finite reports ok == false and leaves the rod exactly as it was (loads queued for
+// that step are dropped). Deterministic: the same calls give bitwise identical results.
+//
+// Hooks for a physics bridge (all "next step only", cleared by step() whether it succeeds or not):
+//   addForce(s, f)    point force f (N) at C(s), explicit.
+//   addImpulse(s, J)  impulse J (N s) delivered over the next step (as the force J / h).
+//   addSpring(s, f0, K_c, D_c)  an implicit point interaction at C(s): the force on the rope is
+//       f(x, u) ~ f0 - K_c (x_new - x) - D_c (u_new - u), x = C(s), u = Cdot(s), with f0 the force at the
+//       current state, K_c = -df/dx and D_c = -df/du (3x3, symmetric positive semidefinite for
+//       stability). It adds b_i(s) b_j(s) (h^2 K_c + h D_c) to the system and h b_i(s) (f0 - h K_c u)
+//       to the right-hand side, exactly like the rod's own stiffness: contact treated implicitly.
+// Interaction points (pins, forces, impulses, springs) also get a knot at s when adaptive.
+
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rope/common/types.h"
+#include "rope/rod/banded_matrix.h"
+#include "rope/rod/pin_constraints.h"
+#include "rope/rod/rod_integrals.h"
+#include "rope/rod/rod_settings.h"
+#include "rope/spline/knot_vector.h"
+
+namespace rope {
+
+struct StepReport {
+  bool ok = true;
+  const char* failure = "";   // why the step failed (static text), empty when ok
+  int controlPoints = 0;      // after adaptivity
+  int insertions = 0;         // knots inserted by adaptivity in this step
+  int removals = 0;           // knots removed by adaptivity in this step
+  double maxRemovalError = 0.0;          // m, largest curve displacement a removal caused
+  double maxRemovalVelocityError = 0.0;  // m/s, same for the velocity field
+  // The knot vector after the step is Rod::knots().
+};
+
+struct RemovalReport {
+  double positionError = 0.0;  // m, bound on max_s |C_new(s) - C_old(s)|
+  double velocityError = 0.0;  // m/s, bound on the change of the velocity field
+  double restError = 0.0;      // m, bound on the change of the rest curve
+};
+
+class Rod {
+ public:
+  // How a rest shape is derived from the initial geometry.
+  enum class RestShape {
+    kScaledToRestLength,  // the initial curve scaled so that its length is settings.restLength
+    kAsGiven,             // the initial curve itself: the rope starts unstretched
+  };
+
+  // Straight rope from a to b (a != b): settings.initialControlPoints points, clamped uniform knots over
+  // [0, settings.restLength] (s = rest arclength); the rest length is settings.restLength, so
+  // |b - a| != restLength starts stretched or compressed.
+  static Rod fromSegment(const RodSettings& settings, const Vec3& a, const Vec3& b);
+  // Rope through the polyline (interpolated by a clamped spline of settings.degree, one control point
+  // per polyline point): it can be created bent and slack.
+  static Rod fromPolyline(const RodSettings& settings, const PointList& points,
+                          RestShape rest = RestShape::kScaledToRestLength);
+  // Explicit control points and knots; the rest curve is derived from them ...
+  static Rod fromControlPoints(const RodSettings& settings, const KnotVector& knots,
+                               const PointList& points, RestShape rest = RestShape::kScaledToRestLength);
+  // ... or given explicitly (same knots; settings.restLength is then not used).
+  static Rod fromControlPoints(const RodSettings& settings, const KnotVector& knots,
+                               const PointList& points, const PointList& restPoints);
+
+  // ---- state access ----
+  const RodSettings& settings() const { return settings_; }
+  int degree() const { return knots_.degree(); }
+  int controlPointCount() const { return static_cast<int>(points_.size()); }
+  const KnotVector& knots() const { return knots_; }
+  const PointList& controlPoints() const { return points_; }
+  const PointList& velocities() const { return velocities_; }     // control-point velocities, m/s
+  const PointList& restControlPoints() const { return rest_; }
+  const RodIntegrals& integrals() const { return integrals_; }
+  double beginParameter() const { return knots_.validBegin(); }
+  double endParameter() const { return knots_.validEnd(); }
+  // Throw InvalidArgument("s", ...) outside [beginParameter, endParameter] or NaN.
+  Vec3 position(double s) const;
+  Vec3 velocity(double s) const;
+  Vec3 tangent(double s) const;  // unit tangent (zero vector where C'(s) = 0)
+  double length() const;         // current arc length, m
+  double restLength() const;     // m
+  double maxStrain() const;      // largest |C'|/l0' - 1 over the quadrature points
+  double mass() const;           // kg
+  Vec3 momentum() const;         // kg m/s
+  double kineticEnergy() const;  // J, (1/2) v^T M v
+  double stretchingEnergy() const;
+  double bendingEnergy() const;
+  double gravityEnergy() const;  // -integral of mu g.C l0' ds (zero at the origin)
+  double potentialEnergy() const { return stretchingEnergy() + bendingEnergy() + gravityEnergy(); }
+  double totalEnergy() const { return kineticEnergy() + potentialEnergy(); }
+
+  // Replace positions and/or velocities (same count, finite; "points"/"velocities" in errors).
+  void setControlPoints(const PointList& points);
+  void setVelocities(const PointList& velocities);
+
+  // ---- pins ----
+  // Holds C(s) at target (default: where it is now). Throws InvalidArgument for s outside the valid
+  // range or NaN ("s"), a pin already at s ("s"), a non-finite target ("target"), or more pins than
+  // control points ("pins"). Returns the pin's id.
+  int pin(double s, const Vec3& target);
+  int pin(double s);
+  // Target for the end of the next step (moving pins). Throws for an unknown id ("id") or non-finite target.
+  void setPinTarget(int id, const Vec3& target);
+  void releasePin(int id);  // throws for an unknown id
+  const std::vector<Pin>& pins() const { return pins_; }
+
+  // ---- loads for the next step (see the header comment) ----
+  void addForce(double s, const Vec3& force);
+  void addImpulse(double s, const Vec3& impulse);
+  void addSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
+                 const Eigen::Matrix3d& damping);
+  void clearLoads();
+
+  // One step of h seconds (finite, > 0, else InvalidArgument "h").
+  StepReport step(double h);
+
+  // ---- explicit refinement and cutting ----
+  // Exact insertion ([A] §3.1): positions and velocities along the curve do not change.
+  void insertKnot(double s);
+  // Removes one occurrence of the knot s ([A] eq. 7); returns how much the fields moved.
+  RemovalReport removeKnot(double s);
+  // Cuts at s (strictly inside, no pin exactly at s): two independent rods that inherit positions,
+  // velocities, rest state, pins and queued loads on their side. This rod is unchanged.
+  std::pair<Rod, Rod> cut(double s) const;
+
+ private:
+  struct PointLoad {
+    double parameter;
+    Vec3 force;  // N; impulses are stored as J and divided by h in step()
+    bool impulse;
+  };
+  struct Spring {
+    double parameter;
+    Vec3 force;
+    Eigen::Matrix3d stiffness;
+    Eigen::Matrix3d damping;
+  };
+
+  Rod(const RodSettings& settings, KnotVector knots, PointList points, PointList velocities,
+      PointList rest, int gaussCount);
+  static Rod fromCurve(const RodSettings& settings, const KnotVector& knots, const PointList& points,
+                       RestShape rest);
+  void validateParameter(double s) const;
+  int findPin(int id) const;
+  bool assembleAndSolve(double h, StepReport& report);
+  void adapt(StepReport& report);
+  void insertKnotUnchecked(double s);
+  bool isInteractionKnot(double s) const;
+
+  RodSettings settings_;
+  KnotVector knots_;
+  PointList points_;
+  PointList velocities_;
+  PointList rest_;
+  RodIntegrals integrals_;
+  std::vector<Pin> pins_;
+  int nextPinId_ = 1;
+  std::vector<PointLoad> loads_;
+  std::vector<Spring> springs_;
+
+  // Step scratch (kept to avoid allocation per step).
+  SymmetricBandedMatrix system_;
+  ConstrainedSolver solver_;
+  std::vector<ConstraintRows> rows_;
+  std::vector<double> rhs_;
+  PointList force_, stiffnessTimesV_, massTimesV_;
+  PointList newPoints_, newVelocities_;
+  std::vector<double> bend_;
+  std::vector<int> spans_;
+  std::vector<double> interactions_;
+};
+
+}  // namespace rope

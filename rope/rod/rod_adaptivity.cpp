@@ -1,0 +1,127 @@
+// Rod: knot insertion and removal, explicit and adaptive ([A] §3.1, §4; spec §1, §3).
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "rope/common/error.h"
+#include "rope/rod/adaptivity.h"
+#include "rope/rod/rod.h"
+#include "rope/spline/control_polygon.h"
+#include "rope/spline/knot_insertion.h"
+#include "rope/spline/knot_removal.h"
+
+namespace rope {
+
+void Rod::insertKnotUnchecked(double s) {
+  const KnotInsertion plan = planKnotInsertion(knots_, s);
+  knots_.insertValue(s);
+  // The same linear map for every per-control-point field: the curve, its velocity field and the rest
+  // metric are exactly unchanged, so mass and energies are too.
+  plan.apply(points_);
+  plan.apply(velocities_);
+  plan.apply(rest_);
+  integrals_.afterInsertion(plan, knots_, rest_);
+}
+
+void Rod::insertKnot(double s) {
+  validateParameter(s);
+  insertKnotUnchecked(s);  // planKnotInsertion validates the rest (strictly inside, multiplicity)
+}
+
+RemovalReport Rod::removeKnot(double s) {
+  const KnotRemoval plan = planKnotRemoval(knots_, points_, s);
+  if (controlPointCount() - 1 < static_cast<int>(pins_.size())) {
+    throw InvalidArgument("s", formatValue(s), "removal would leave fewer control points than pins");
+  }
+  RemovalReport report;
+  report.positionError = plan.chosenShapeError();
+  report.velocityError = localRemoval(plan, velocities_).error;
+  report.restError = localRemoval(plan, rest_).error;
+  knots_.eraseAt(plan.knotIndex);
+  plan.apply(points_);
+  plan.apply(velocities_);
+  plan.apply(rest_);
+  integrals_.afterRemoval(plan, knots_, rest_);
+  return report;
+}
+
+bool Rod::isInteractionKnot(double s) const {
+  for (double t : interactions_)
+    if (t == s) return true;
+  return false;
+}
+
+void Rod::adapt(StepReport& report) {
+  if (!settings_.adaptive) return;
+  const int d = degree();
+  const double insertThreshold = bendMeasureFromAngle(settings_.insertAngle);
+  const double removeThreshold = bendMeasureFromAngle(settings_.removeAngle);
+  const double spacing = settings_.minKnotSpacing;
+  const int maxCount = settings_.maxControlPoints;
+
+  // 1. Interaction points get a knot, so that local degrees of freedom exist there ([A] §4).
+  for (double s : interactions_) {
+    if (controlPointCount() >= maxCount) break;
+    if (knots_.multiplicity(s) > 0) continue;
+    const int k = knots_.findSpan(s);
+    const double parameterLength = knots_[k + 1] - knots_[k];
+    const double restPerParameter = integrals_.span(k - d).restLength / parameterLength;
+    const double nearest = std::min(s - knots_[k], knots_[k + 1] - s) * restPerParameter;
+    if (nearest < spacing) continue;
+    insertKnotUnchecked(s);
+    ++report.insertions;
+  }
+
+  // 2. Curvature criterion ([A] eq. 13): refine where the control polygon bends.
+  bendMeasures(points_, bend_);
+  curvatureInsertionSpans(knots_, bend_, insertThreshold, spans_);
+  for (auto it = spans_.rbegin(); it != spans_.rend(); ++it) {  // right to left: lower spans keep their index
+    if (controlPointCount() >= maxCount) break;
+    const int k = *it;
+    if (integrals_.span(k - d).restLength < 2.0 * spacing) continue;
+    insertKnotUnchecked(0.5 * (knots_[k] + knots_[k + 1]));
+    ++report.insertions;
+  }
+
+  // 3. Removal where the polygon is straight and the error small, right to left.
+  bendMeasures(points_, bend_);
+  const double bound = settings_.removalErrorBound;
+  for (int r = controlPointCount() - 1; r >= d + 1; --r) {
+    const int n = controlPointCount();
+    if (n - 1 < settings_.minControlPoints || n - 1 <= static_cast<int>(pins_.size())) break;
+    if (r > n - 1) continue;
+    const double t = knots_[r];
+    if (!(t > beginParameter() && t < endParameter())) continue;
+    if (knots_.multiplicity(t) != 1 || isInteractionKnot(t)) continue;
+    bool straight = true;
+    for (int i = std::max(1, r - d - 1); i <= std::min(n - 2, r); ++i)
+      straight = straight && bend_[static_cast<size_t>(i)] < removeThreshold;
+    if (!straight) continue;
+    const KnotRemoval plan = planKnotRemoval(knots_, points_, t);
+    if (!(plan.chosenShapeError() <= bound)) continue;
+    const LocalRemoval restRemoval = localRemoval(plan, rest_);
+    if (!(restRemoval.error <= bound)) continue;
+    // Look ahead: the polygon after removal must not qualify for insertion at once.
+    const LocalRemoval pointRemoval = localRemoval(plan, points_);
+    bool stays = true;
+    for (int i = 1; i + 1 < static_cast<int>(pointRemoval.after.size()); ++i)
+      stays = stays && bendMeasure(pointRemoval.after, i) <= insertThreshold;
+    if (!stays) continue;
+    const double velocityError = localRemoval(plan, velocities_).error;
+    knots_.eraseAt(plan.knotIndex);
+    plan.apply(points_);
+    plan.apply(velocities_);
+    plan.apply(rest_);
+    integrals_.afterRemoval(plan, knots_, rest_);
+    ++report.removals;
+    report.maxRemovalError = std::max(report.maxRemovalError, plan.chosenShapeError());
+    report.maxRemovalVelocityError = std::max(report.maxRemovalVelocityError, velocityError);
+    // Indices <= r are what the rest of the sweep reads; refresh the ones this removal changed.
+    const int count = controlPointCount();
+    bend_.resize(static_cast<size_t>(count));
+    for (int i = std::max(1, r - d - 3); i <= std::min(count - 2, r + 1); ++i)
+      bend_[static_cast<size_t>(i)] = bendMeasure(points_, i);
+  }
+}
+
+}  // namespace rope

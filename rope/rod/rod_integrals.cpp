@@ -1,0 +1,171 @@
+#include "rope/rod/rod_integrals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "rope/common/error.h"
+#include "rope/spline/bspline_basis.h"
+#include "rope/spline/gauss_legendre.h"
+
+namespace rope {
+
+namespace {
+// Offsets inside one span record.
+struct Layout {
+  int local, gauss;
+  int dBasis() const { return 1; }
+  int w0() const { return dBasis() + gauss * local; }
+  int w1() const { return w0() + gauss; }
+  int w3() const { return w1() + gauss; }
+  int mass() const { return w3() + gauss; }
+  int bending() const { return mass() + local * local; }
+  int gravity() const { return bending() + local * local; }
+  int stride() const { return gravity() + local; }
+};
+}  // namespace
+
+int RodIntegrals::exactGaussCount(int degree) {
+  // Stretching: degree 4(d-1) -> 2d-1 points; mass: degree 2d -> d+1 points.
+  return std::max(2 * degree - 1, degree + 1);
+}
+
+void RodIntegrals::build(const KnotVector& knots, const PointList& restPoints, double linearDensity,
+                         double bendingStiffness, int gaussCount) {
+  degree_ = knots.degree();
+  gaussCount_ = gaussCount;
+  linearDensity_ = linearDensity;
+  bendingStiffness_ = bendingStiffness;
+  const Layout layout{degree_ + 1, gaussCount_};
+  stride_ = layout.stride();
+  spanCount_ = knots.controlPointCount() - degree_;
+  data_.assign(static_cast<size_t>(spanCount_) * static_cast<size_t>(stride_), 0.0);
+  for (int j = 0; j < spanCount_; ++j) computeSpan(knots, restPoints, j);
+}
+
+void RodIntegrals::computeSpan(const KnotVector& knots, const PointList& restPoints, int j) {
+  const int d = degree_;
+  const int local = d + 1;
+  const Layout layout{local, gaussCount_};
+  double* record = spanData(j);
+  std::fill(record, record + stride_, 0.0);
+  const int k = d + j;
+  const double s0 = knots[k];
+  const double s1 = knots[k + 1];
+  if (!(s1 > s0)) return;  // empty span: no contribution
+  const double half = 0.5 * (s1 - s0);
+  const double mid = 0.5 * (s0 + s1);
+  const GaussRule rule = gaussLegendre(gaussCount_);
+  BasisValues basis;
+  double restLength = 0.0;
+  for (int g = 0; g < gaussCount_; ++g) {
+    const double s = mid + half * rule.nodes[g];
+    evaluateBasis(knots, k, s, 2, basis);
+    Vec3 restTangent = Vec3::Zero();
+    for (int a = 0; a < local; ++a) restTangent += basis.d[1][static_cast<size_t>(a)] * restPoints[static_cast<size_t>(j + a)];
+    const double l0 = restTangent.norm();  // l0'(s)
+    if (!std::isfinite(l0) || l0 <= 0.0) {
+      throw InvalidArgument("restPoints", "span " + std::to_string(j),
+                            "rest curve must be regular (|C0'(s)| > 0)");
+    }
+    const double wj = rule.weights[g] * half;
+    const double w0 = wj * l0;
+    const double w1 = wj / l0;
+    const double w3 = w1 / (l0 * l0);
+    restLength += w0;
+    record[layout.w0() + g] = w0;
+    record[layout.w1() + g] = w1;
+    record[layout.w3() + g] = w3;
+    double* db = record + layout.dBasis() + g * local;
+    for (int a = 0; a < local; ++a) db[a] = basis.d[1][static_cast<size_t>(a)];
+    // [A] eq. 10 with a linear density per rest length; gravity weights likewise.
+    for (int a = 0; a < local; ++a) {
+      const double ba = basis.d[0][static_cast<size_t>(a)];
+      const double ca = basis.d[2][static_cast<size_t>(a)];
+      record[layout.gravity() + a] += linearDensity_ * w0 * ba;
+      for (int b = 0; b < local; ++b) {
+        record[layout.mass() + a * local + b] += linearDensity_ * w0 * ba * basis.d[0][static_cast<size_t>(b)];
+        record[layout.bending() + a * local + b] +=
+            bendingStiffness_ * w3 * ca * basis.d[2][static_cast<size_t>(b)];
+      }
+    }
+  }
+  record[0] = restLength;
+}
+
+void RodIntegrals::recomputeRange(const KnotVector& knots, const PointList& restPoints, int firstSpanK,
+                                  int lastSpanK) {
+  const int first = std::max(0, firstSpanK - degree_);
+  const int last = std::min(spanCount_ - 1, lastSpanK - degree_);
+  for (int j = first; j <= last; ++j) computeSpan(knots, restPoints, j);
+}
+
+void RodIntegrals::afterInsertion(const KnotInsertion& plan, const KnotVector& knots,
+                                  const PointList& restPoints) {
+  // Old span k became new spans k and k+1; old spans > k shift by one. The basis functions that
+  // changed (new b_{k-d} .. b_{k+1}) touch new spans k-d .. k+d+1: recompute those, keep the rest.
+  const int k = plan.span;
+  const size_t at = static_cast<size_t>(k - degree_) * static_cast<size_t>(stride_);
+  data_.insert(data_.begin() + static_cast<std::ptrdiff_t>(at), static_cast<size_t>(stride_), 0.0);
+  ++spanCount_;
+  recomputeRange(knots, restPoints, k - degree_ - 1, k + degree_ + 2);
+}
+
+void RodIntegrals::afterRemoval(const KnotRemoval& plan, const KnotVector& knots,
+                                const PointList& restPoints) {
+  // The removed knot index r separated old spans r-1 and r; they merge into new span r-1.
+  const int r = plan.knotIndex;
+  const int erased = std::clamp(r - degree_, 0, spanCount_ - 1);
+  const size_t at = static_cast<size_t>(erased) * static_cast<size_t>(stride_);
+  data_.erase(data_.begin() + static_cast<std::ptrdiff_t>(at),
+              data_.begin() + static_cast<std::ptrdiff_t>(at + static_cast<size_t>(stride_)));
+  --spanCount_;
+  recomputeRange(knots, restPoints, r - degree_ - 2, r + degree_ + 1);
+}
+
+SpanView RodIntegrals::span(int j) const {
+  const Layout layout{degree_ + 1, gaussCount_};
+  const double* record = spanData(j);
+  SpanView view;
+  view.localCount = degree_ + 1;
+  view.gaussCount = gaussCount_;
+  view.restLength = record[0];
+  view.dBasis = record + layout.dBasis();
+  view.w0 = record + layout.w0();
+  view.w1 = record + layout.w1();
+  view.w3 = record + layout.w3();
+  view.mass = record + layout.mass();
+  view.bending = record + layout.bending();
+  view.gravity = record + layout.gravity();
+  return view;
+}
+
+double RodIntegrals::B2(int i, int m) const {
+  double sum = 0.0;
+  const int lo = std::min(i, m);
+  const int hi = std::max(i, m);
+  for (int j = std::max(0, hi - degree_); j <= std::min(lo, spanCount_ - 1); ++j) {
+    const SpanView v = span(j);
+    for (int g = 0; g < v.gaussCount; ++g) {
+      const double* db = v.dBasis + g * v.localCount;
+      sum += v.w1[g] * db[i - j] * db[m - j];
+    }
+  }
+  return sum;
+}
+
+double RodIntegrals::B4(int i, int m, int p, int q) const {
+  double sum = 0.0;
+  const int lo = std::min(std::min(i, m), std::min(p, q));
+  const int hi = std::max(std::max(i, m), std::max(p, q));
+  for (int j = std::max(0, hi - degree_); j <= std::min(lo, spanCount_ - 1); ++j) {
+    const SpanView v = span(j);
+    for (int g = 0; g < v.gaussCount; ++g) {
+      const double* db = v.dBasis + g * v.localCount;
+      sum += v.w3[g] * db[i - j] * db[m - j] * db[p - j] * db[q - j];
+    }
+  }
+  return sum;
+}
+
+}  // namespace rope

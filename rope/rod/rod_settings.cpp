@@ -1,0 +1,77 @@
+#include "rope/rod/rod_settings.h"
+
+#include <cmath>
+#include <string>
+
+#include "rope/common/error.h"
+#include "rope/spline/knot_vector.h"
+
+namespace rope {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+void requireCount(const std::string& name, int value, int lowest) {
+  if (value < lowest) {
+    throw InvalidArgument(name, std::to_string(value), "must be >= " + std::to_string(lowest));
+  }
+}
+}  // namespace
+
+double RodSettings::area() const { return kPi * radius * radius; }
+
+double RodSettings::effectiveLinearDensity() const {
+  return linearDensity == kDerived ? materialDensity * area() : linearDensity;
+}
+
+double RodSettings::axialStiffness() const { return youngsModulus * area(); }
+
+double RodSettings::effectiveBendingStiffness() const {
+  // Solid circular section: I = pi r^4 / 4.
+  return bendingStiffness == kDerived ? youngsModulus * kPi * radius * radius * radius * radius / 4.0
+                                      : bendingStiffness;
+}
+
+void RodSettings::validate() const {
+  requirePositive("settings.restLength", restLength);
+  requirePositive("settings.radius", radius);
+  requireFinite("settings.linearDensity", linearDensity);
+  if (linearDensity == kDerived) {
+    requirePositive("settings.materialDensity", materialDensity);
+  } else {
+    requirePositive("settings.linearDensity", linearDensity);
+  }
+  requirePositive("settings.youngsModulus", youngsModulus);
+  requireFinite("settings.bendingStiffness", bendingStiffness);
+  if (bendingStiffness != kDerived) requireNonNegative("settings.bendingStiffness", bendingStiffness);
+  requireNonNegative("settings.massDamping", massDamping);
+  requireNonNegative("settings.stiffnessDamping", stiffnessDamping);
+  for (int axis = 0; axis < 3; ++axis) {
+    requireFinite("settings.gravity[" + std::to_string(axis) + "]", gravity[axis]);
+  }
+  if (degree < 1 || degree > kMaxDegree) {
+    throw InvalidArgument("settings.degree", std::to_string(degree),
+                          "must be in 1.." + std::to_string(kMaxDegree));
+  }
+  requireCount("settings.minControlPoints", minControlPoints, degree + 1);
+  requireCount("settings.maxControlPoints", maxControlPoints, minControlPoints);
+  requireCount("settings.initialControlPoints", initialControlPoints, minControlPoints);
+  if (initialControlPoints > maxControlPoints) {
+    throw InvalidArgument("settings.initialControlPoints", std::to_string(initialControlPoints),
+                          "must be <= settings.maxControlPoints");
+  }
+  requirePositive("settings.insertAngle", insertAngle);
+  requireFinite("settings.removeAngle", removeAngle);
+  if (!(removeAngle > insertAngle) || !(removeAngle < kPi)) {
+    throw InvalidArgument("settings.removeAngle", formatValue(removeAngle),
+                          "must satisfy settings.insertAngle < removeAngle < pi");
+  }
+  requirePositive("settings.removalErrorBound", removalErrorBound);
+  requirePositive("settings.minKnotSpacing", minKnotSpacing);
+  // Derived quantities must be usable too (e.g. a radius so small that EA underflows to 0).
+  requirePositive("settings.linearDensity (derived)", effectiveLinearDensity());
+  requirePositive("settings.youngsModulus * area", axialStiffness());
+  requireNonNegative("settings.bendingStiffness (derived)", effectiveBendingStiffness());
+}
+
+}  // namespace rope

@@ -1,0 +1,40 @@
+#pragma once
+// Green–Lagrange stretching ([A] eqs. 11–12, spec §2):
+//   E = (EA/8) int (gamma^2 - 1)^2 l0' ds,  gamma = |C'(s)| / l0'(s),
+//   F_i = (EA/2) sum_m q_m [B_im - sum_pq B_impq q_p.q_q],
+//   K_im = (EA/2) [(sum_pq B_impq q_p.q_q - B_im) I + 2 sum_ac B_imac q_a q_c^T]   (exact Hessian).
+// In the factored form of rod_integrals.h, at each Gauss point with t = W3 |C'|^2 - W1
+// (= w J (gamma^2 - 1) / l0'), the point contributes F_a = -(EA/2) t b'_a C' and
+// K_ab = b'_a b'_b [(EA/2) t I + EA W3 C' C'^T].
+// Under compression (t < 0) the first term makes K indefinite; the Gauss–Newton clamp replaces t by
+// max(t, 0) there (spec §2: "drop the negative part"), which leaves K positive semidefinite, so that
+// M + hD + h^2 K stays positive definite. The exact Hessian is kept for tests and diagnostics.
+
+#include <Eigen/Core>
+
+#include "rope/common/types.h"
+#include "rope/rod/banded_matrix.h"
+#include "rope/rod/rod_integrals.h"
+
+namespace rope {
+
+enum class StiffnessMode { kExact, kClamped };
+
+// One span: q points at the span's d+1 control points. Adds the forces to force[0..d] and, if
+// stiffness is not null, writes the lower blocks stiffness[a * (d+1) + b], a >= b. Returns the energy (J).
+double stretchingSpan(const SpanView& span, const Vec3* q, double axialStiffness, StiffnessMode mode,
+                      Vec3* force, Eigen::Matrix3d* stiffness);
+
+// Whole-rod forms (O(n)); EA in N.
+double stretchingEnergy(const RodIntegrals& integrals, const PointList& q, double axialStiffness);
+// forces is resized to q.size() and overwritten.
+void stretchingForces(const RodIntegrals& integrals, const PointList& q, double axialStiffness,
+                      PointList& forces);
+// K is reset to q.size() blocks of 3 with block bandwidth d and filled.
+void assembleStretchingStiffness(const RodIntegrals& integrals, const PointList& q,
+                                 double axialStiffness, StiffnessMode mode, SymmetricBandedMatrix& K);
+// Largest gamma - 1 over the Gauss points (dimensionless engineering strain; negative if compressed
+// everywhere).
+double maxStrain(const RodIntegrals& integrals, const PointList& q);
+
+}  // namespace rope

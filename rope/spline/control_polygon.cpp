@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/Geometry>
+
 #include "rope/common/error.h"
 #include "rope/spline/point_validation.h"
 

@@ -89,12 +89,14 @@ void deepContact(const btVector3& p, const btVector3& q, btScalar radius, const 
                            "capsule axis meets the shape (depth " + formatValue(depth) + ")");
   }
   // libccd: moving the capsule (object 2) by depth * direction separates, so `direction` points
-  // from the body into the rope; `position` lies midway between the two surfaces.
+  // from the body into the rope. Its `position` is a point inside the overlap (a barycentric mix
+  // that includes the centres), not a surface point: it only selects where along the axis the
+  // contact acts. The surface points then follow from the normal and the distance.
   local.normal = normal;
   local.distance = margin - depth;
-  local.pointOnBody = toBt(&position) + normal * (depth / 2);
-  local.pointOnCapsule = local.pointOnBody + normal * local.distance;
-  local.t = closestAxisParameter(local.pointOnCapsule, p, q);
+  local.t = closestAxisParameter(toBt(&position), p, q);
+  local.pointOnCapsule = p + (q - p) * local.t - normal * radius;
+  local.pointOnBody = local.pointOnCapsule - normal * local.distance;
 }
 
 }  // namespace

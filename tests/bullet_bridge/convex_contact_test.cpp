@@ -1,0 +1,245 @@
+#include "bullet_bridge/convex_contact.h"
+
+#include <btBulletCollisionCommon.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "bullet_bridge/find_contacts.h"
+#include "narrowphase_test_support.h"
+
+namespace rope::bullet {
+namespace {
+
+using test::placement;
+using test::vectorNear;
+using test::worldCapsule;
+
+constexpr double kExact = 1e-9;
+
+// Contacts between a capsule given in the body's local frame and `shape` placed at placement().
+std::vector<Contact> contactsWith(const btCollisionShape& shape, const btVector3& a,
+                                  const btVector3& b, btScalar radius, double margin) {
+  btCollisionObject object;
+  object.setCollisionShape(const_cast<btCollisionShape*>(&shape));
+  object.setWorldTransform(placement());
+  std::vector<Contact> contacts;
+  findContacts(worldCapsule(placement(), a, b, radius), object, margin, contacts);
+  return contacts;
+}
+
+// Checks one contact against an analytic distance and local-frame normal / body point, plus the
+// convention pointOnCapsule - pointOnBody = distance * normal.
+void expectContact(const std::vector<Contact>& contacts, double distance,
+                   const btVector3& localNormal, const btVector3& localPointOnBody,
+                   double tolerance = kExact) {
+  ASSERT_EQ(contacts.size(), 1u);
+  const Contact& c = contacts[0];
+  EXPECT_NEAR(c.distance, distance, tolerance);
+  EXPECT_TRUE(vectorNear(c.normal, placement().getBasis() * localNormal.normalized(), tolerance));
+  EXPECT_TRUE(vectorNear(c.pointOnBody, placement() * localPointOnBody, tolerance));
+  EXPECT_TRUE(vectorNear(c.pointOnCapsule - c.pointOnBody, c.normal * c.distance, 1e-12));
+  EXPECT_NEAR(c.normal.length(), 1.0, 1e-12);
+  EXPECT_GE(c.t, 0.0);
+  EXPECT_LE(c.t, 1.0);
+  EXPECT_EQ(c.childIndex, -1);
+  EXPECT_EQ(c.triangleIndex, -1);
+}
+
+TEST(ConvexContact, BoxFaceUsesTheFullExtentsIncludingBulletsMargin) {
+  btBoxShape box(btVector3(1, 0.5, 0.25));
+  // Bullet stores the extents minus the margin; the true box is without-margin + margin.
+  ASSERT_NEAR(box.getHalfExtentsWithoutMargin().y() + box.getMargin(), 0.5, 1e-15);
+  const btScalar r = 0.1;
+  // Speculative: axis at 0.5 + r + 0.03 above the +y face, margin 0.05 -> distance 0.03.
+  // The axis is parallel to the face, so any closest point along it is correct: check its height.
+  auto contacts = contactsWith(box, {-0.5, 0.63, -0.1}, {0.5, 0.63, 0.1}, r, 0.05);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_NEAR(contacts[0].distance, 0.03, kExact);
+  EXPECT_TRUE(vectorNear(contacts[0].normal, placement().getBasis() * btVector3(0, 1, 0), kExact));
+  EXPECT_NEAR((placement().inverse() * contacts[0].pointOnBody).y(), 0.5, kExact);
+  EXPECT_NEAR((placement().inverse() * contacts[0].pointOnCapsule).y(), 0.53, kExact);
+  // Penetrating by 0.04 (axis still outside the box).
+  expectContact(contactsWith(box, {0, 0.56, 0}, {0, 0.56, 0}, r, 0.0), -0.04, {0, 1, 0},
+                {0, 0.5, 0});
+  // Beyond the margin: no contact.
+  EXPECT_TRUE(contactsWith(box, {-0.5, 0.6500001, 0}, {0.5, 0.6500001, 0}, r, 0.05).empty());
+}
+
+TEST(ConvexContact, BoxMarginSettingKeepsTheTrueExtents) {
+  btBoxShape box(btVector3(1, 1, 1));
+  box.setMargin(0.2);
+  expectContact(contactsWith(box, {1.35, 0, 0}, {1.6, 0.2, 0}, 0.25, 0.5), 0.1, {1, 0, 0},
+                {1, 0, 0});
+}
+
+TEST(ConvexContact, BoxEdgeAndCorner) {
+  btBoxShape box(btVector3(1, 0.5, 0.25));
+  const btScalar r = 0.05;
+  // Edge (x = 1, y = 0.5) and a z-direction capsule 0.2 away diagonally.
+  const btVector3 diagonal = btVector3(1, 1, 0).normalized();
+  const btVector3 edgePoint(1, 0.5, 0.1);
+  expectContact(contactsWith(box, edgePoint + diagonal * 0.2,
+                             edgePoint + diagonal * 0.7 + btVector3(0, 0, 0.1), r, 0.2),
+                0.15, diagonal, edgePoint);
+  // Corner and a capsule pointing away from it.
+  const btVector3 corner(1, 0.5, 0.25), out = btVector3(1, 2, 3).normalized();
+  const auto contacts = contactsWith(box, corner + out * 0.08, corner + out * 1.0, r, 0.1);
+  expectContact(contacts, 0.03, out, corner);
+  EXPECT_EQ(contacts[0].t, 0.0);
+}
+
+TEST(ConvexContact, DeepPenetrationUsesMprOnTheInflatedCapsule) {
+  btBoxShape box(btVector3(1, 0.5, 0.25));
+  // Axis inside the box, 0.1 below the top face: the minimum translation is 0.1 + r up, and the
+  // ray between the centres runs along it, so MPR is exact here.
+  const auto contacts = contactsWith(box, {-0.5, 0.4, 0}, {0.5, 0.4, 0}, 0.1, 0.05);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_NEAR(contacts[0].distance, -0.2, 1e-9);
+  EXPECT_TRUE(vectorNear(contacts[0].normal, placement().getBasis() * btVector3(0, 1, 0), 1e-9));
+  EXPECT_NEAR((placement().inverse() * contacts[0].pointOnBody).y(), 0.5, 1e-9);
+  EXPECT_TRUE(vectorNear(contacts[0].pointOnCapsule - contacts[0].pointOnBody,
+                         contacts[0].normal * contacts[0].distance, 1e-12));
+}
+
+TEST(ConvexContact, SphereNearTheCapsuleEndIsExact) {
+  // The sphere sits near one end of a long capsule, where the ray between the centres is far from
+  // the contact normal: a pure MPR depth would be wrong here, the GJK distance is exact.
+  btSphereShape sphere(0.1);
+  const btVector3 centre(0, 0, 0);
+  const btVector3 a(-1.9, 0.25, 0), b(0.1, 0.25, 0);  // axis 0.25 above the sphere centre
+  expectContact(contactsWith(sphere, a, b, 0.1, 0.1), 0.05, {0, 1, 0}, {0, 0.1, 0});
+  expectContact(contactsWith(sphere, a - btVector3(0, 0.1, 0), b - btVector3(0, 0.1, 0), 0.1, 0.0),
+                -0.05, {0, 1, 0}, {0, 0.1, 0});
+  EXPECT_TRUE(contactsWith(sphere, a, b, 0.1, 0.0499).empty());
+}
+
+TEST(ConvexContact, CapsuleVsCapsuleAllUpAxes) {
+  btCapsuleShapeX capsuleX(0.2, 1.0);  // radius 0.2, axis from x = -0.5 to 0.5
+  btCapsuleShape capsuleY(0.2, 1.0);
+  btCapsuleShapeZ capsuleZ(0.2, 1.0);
+  const btCapsuleShape* shapes[3] = {&capsuleX, &capsuleY, &capsuleZ};
+  for (int axis = 0; axis < 3; ++axis) {
+    const btVector3 up(axis == 0, axis == 1, axis == 2);
+    const btVector3 side(axis == 1, axis == 2, axis == 0);
+    const btVector3 across = up.cross(side);
+    // Skew: a capsule along `across`, 0.45 from the body's axis at height 0.3 along it.
+    const btVector3 centre = up * 0.3 + side * 0.45;
+    expectContact(contactsWith(*shapes[axis], centre - across, centre + across, 0.05, 0.5), 0.2,
+                  side, up * 0.3 + side * 0.2);
+    // Beyond the body's axis end: end-cap sphere contact.
+    const btVector3 beyond = up * 0.9;
+    expectContact(contactsWith(*shapes[axis], beyond - across, beyond + across, 0.05, 0.5), 0.15,
+                  up, up * 0.7);
+  }
+}
+
+TEST(ConvexContact, CylinderSideAndCapAllUpAxes) {
+  btCylinderShapeX cylinderX(btVector3(0.8, 0.5, 0.5));
+  btCylinderShape cylinderY(btVector3(0.5, 0.8, 0.5));
+  btCylinderShapeZ cylinderZ(btVector3(0.5, 0.5, 0.8));
+  const btCylinderShape* shapes[3] = {&cylinderX, &cylinderY, &cylinderZ};
+  for (int axis = 0; axis < 3; ++axis) {
+    const btVector3 up(axis == 0, axis == 1, axis == 2);
+    const btVector3 side(axis == 1, axis == 2, axis == 0);
+    const btVector3 across = up.cross(side);
+    // Side: parallel to the axis, capsule surface 0.02 from the mantle (radius 0.5).
+    expectContact(contactsWith(*shapes[axis], side * 0.62, side * 0.92 + up * 0.2, 0.1, 0.05),
+                  0.02, side, side * 0.5, 1e-8);
+    // Cap: across the cap, penetrating 0.01.
+    expectContact(contactsWith(*shapes[axis], up * 0.89, up * 1.19 + across * 0.2, 0.1, 0.05),
+                  -0.01, up, up * 0.8, 1e-8);
+  }
+}
+
+TEST(ConvexContact, ConeSlantIncludesBulletsMargin) {
+  btConeShape cone(0.6, 0.8);  // base radius 0.6 at y = -0.4, apex at y = 0.4
+  const btScalar coneMargin = cone.getMargin();
+  ASSERT_GT(coneMargin, 0.0);
+  const btVector3 apex(0, 0.4, 0), rim(0.6, -0.4, 0);
+  const btVector3 normal = btVector3(0.8, 0.6, 0).normalized();
+  const btVector3 mid = (apex + rim) / 2;
+  const btVector3 along = (apex - rim).normalized();
+  // Capsule parallel to the generator, its axis 0.2 from the sharp cone.
+  const btScalar r = 0.05;
+  expectContact(contactsWith(cone, mid + normal * 0.2, mid + normal * 0.5 + along * 0.1, r, 0.2),
+                0.2 - r - coneMargin, normal, mid + normal * coneMargin, 1e-8);
+}
+
+TEST(ConvexContact, ConeUpAxisVariants) {
+  btConeShapeX coneX(0.5, 1.0);
+  btConeShapeZ coneZ(0.5, 1.0);
+  const btScalar m = coneX.getMargin();
+  // A point-like capsule straight beyond the apex: distance = gap - r - margin.
+  expectContact(contactsWith(coneX, {0.8, 0, 0}, {1.5, 0, 0}, 0.1, 0.5), 0.2 - m, {1, 0, 0},
+                {0.5 + m, 0, 0});
+  expectContact(contactsWith(coneZ, {0, 0, -0.8}, {0, 0, -1.5}, 0.1, 0.5), 0.2 - m, {0, 0, -1},
+                {0, 0, -0.5 - m});
+}
+
+TEST(ConvexContact, ConvexHullTetrahedronWithMargin) {
+  btConvexHullShape hull;
+  hull.addPoint(btVector3(0, 0, 0), false);
+  hull.addPoint(btVector3(1, 0, 0), false);
+  hull.addPoint(btVector3(0, 1, 0), false);
+  hull.addPoint(btVector3(0, 0, 1), true);
+  hull.setMargin(0.03);
+  const btVector3 n = btVector3(1, 1, 1).normalized();
+  const btVector3 faceCentre(1.0 / 3, 1.0 / 3, 1.0 / 3);
+  const btVector3 tangent = btVector3(1, -1, 0).normalized();
+  // Parallel to the slanted face, axis 0.25 from it: distance = 0.25 - r - hull margin.
+  expectContact(contactsWith(hull, faceCentre + n * 0.25, faceCentre + n * 0.5 + tangent * 0.1,
+                             0.1, 0.2),
+                0.12, n, faceCentre + n * 0.03);
+  // Vertex region of the origin vertex.
+  const btVector3 out = btVector3(-1, -2, -2).normalized();
+  expectContact(contactsWith(hull, out * 0.5, out * 0.9, 0.1, 0.5), 0.37, out, out * 0.03);
+  // Scaled hull: the scaled points are used.
+  hull.setLocalScaling(btVector3(2, 2, 2));
+  expectContact(contactsWith(hull, {0.5, 0.5, -0.3}, {0.6, 0.4, -0.8}, 0.1, 0.5), 0.17, {0, 0, -1},
+                {0.5, 0.5, -0.03}, 1e-8);
+}
+
+TEST(ConvexContact, SpeculativeContactsReportTheExactGapUpToTheMargin) {
+  btSphereShape sphere(0.5);
+  const double margin = 0.1;
+  for (double gap : {1e-6, 0.01, 0.05, 0.0999999}) {
+    const auto contacts =
+        contactsWith(sphere, {-0.3, 0.6 + gap, 0}, {0.3, 0.6 + gap, 0}, 0.1, margin);
+    ASSERT_EQ(contacts.size(), 1u) << gap;
+    EXPECT_GT(contacts[0].distance, 0.0);
+    EXPECT_LE(contacts[0].distance, margin);
+    EXPECT_NEAR(contacts[0].distance, gap, 1e-12);
+  }
+  EXPECT_TRUE(contactsWith(sphere, {-0.3, 0.7000001, 0}, {0.3, 0.7000001, 0}, 0.1, margin).empty());
+}
+
+TEST(ConvexContact, CoreDescriptionsFollowBulletConventions) {
+  ConvexCore core;
+  btSphereShape sphere(0.7);
+  ASSERT_TRUE(makeConvexCore(sphere, core));
+  EXPECT_EQ(core.rounding, btScalar(0.7));
+  btCapsuleShapeZ capsule(0.2, 1.0);
+  ASSERT_TRUE(makeConvexCore(capsule, core));
+  EXPECT_EQ(core.upAxis, 2);
+  EXPECT_NEAR(core.halfHeight, 0.5, 1e-15);
+  EXPECT_NEAR(core.rounding, 0.2, 1e-15);
+  btBoxShape box(btVector3(1, 2, 3));
+  box.setLocalScaling(btVector3(2, 1, 1));
+  ASSERT_TRUE(makeConvexCore(box, core));
+  EXPECT_TRUE(vectorNear(core.halfExtents, {2, 2, 3}, 1e-12));
+  EXPECT_EQ(core.rounding, 0.0);
+  btCylinderShapeZ cylinder(btVector3(0.3, 0.3, 2));
+  ASSERT_TRUE(makeConvexCore(cylinder, core));
+  EXPECT_NEAR(core.radius, 0.3, 1e-15);
+  EXPECT_NEAR(core.halfHeight, 2, 1e-15);
+  const btVector3 position(0, 0, 0);
+  const btScalar radius = 0.5;
+  btMultiSphereShape multiSphere(&position, &radius, 1);
+  EXPECT_FALSE(makeConvexCore(multiSphere, core));
+}
+
+}  // namespace
+}  // namespace rope::bullet

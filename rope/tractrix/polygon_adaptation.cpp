@@ -4,14 +4,21 @@
 #include <cmath>
 #include <limits>
 
-#include "rope/spline/control_polygon.h"
+#include <Eigen/Geometry>
+
 #include "rope/spline/knot_insertion.h"
 
 namespace rope {
 namespace {
 
-// Included angle at interior vertex i; the clamped ends have none.
-double cornerAngle(const PointList& points, int i) { return includedAngle(points, i); }
+// Included angle at interior vertex i in [0, pi] (pi = straight), as control_polygon.h's
+// includedAngle() defines it, without its per-call validation: the points here are the rope's own
+// finite state. atan2 keeps full accuracy near straight, where the thresholds live.
+double cornerAngle(const PointList& points, int i) {
+  const Vec3 a = points[static_cast<size_t>(i)] - points[static_cast<size_t>(i - 1)];
+  const Vec3 b = points[static_cast<size_t>(i + 1)] - points[static_cast<size_t>(i)];
+  return std::atan2(a.cross(b).norm(), -a.dot(b));
+}
 
 // Smallest included angle among the interior corners first..last (clipped to 1..n-2); pi if none.
 double smallestAngle(const PointList& points, int first, int last) {
@@ -23,40 +30,61 @@ double smallestAngle(const PointList& points, int first, int last) {
 
 }  // namespace
 
-int subdivideSharpCorners(KnotVector& knots, PointList& points, double subdivisionAngle, int maxControlPoints) {
+int subdivideSharpCorners(KnotVector& knots, PointList& points, double subdivisionAngle, double minSide,
+                          int maxControlPoints) {
   const int d = knots.degree();
   int insertions = 0;
   std::vector<double> angles;
+  std::vector<int> sharp;
+  PointList candidate;
   while (static_cast<int>(points.size()) < maxControlPoints) {
     const int n = static_cast<int>(points.size());
     angles.assign(static_cast<size_t>(n), std::acos(-1.0));
-    int sharpest = -1;
+    sharp.clear();
     for (int i = 1; i <= n - 2; ++i) {
       angles[static_cast<size_t>(i)] = cornerAngle(points, i);
-      if (angles[static_cast<size_t>(i)] < subdivisionAngle &&
-          (sharpest < 0 || angles[static_cast<size_t>(i)] < angles[static_cast<size_t>(sharpest)])) {
-        sharpest = i;
-      }
+      if (angles[static_cast<size_t>(i)] < subdivisionAngle) sharp.push_back(i);
     }
-    if (sharpest < 0) break;
-    // Inserting into span k replaces the corners q_{k-d+1} .. q_{k-1} by d points on their sides
-    // (Boehm, spec §1), so corner i is cut by the spans k = i+1 .. i+d-1 inside d .. n-1.
-    int bestSpan = -1;
-    double bestScore = std::numeric_limits<double>::infinity();
-    for (int k = std::max(d, sharpest + 1); k <= std::min(n - 1, sharpest + d - 1); ++k) {
-      const double mid = 0.5 * (knots[k] + knots[k + 1]);
-      if (!(mid > knots[k] && mid < knots[k + 1])) continue;  // span too short to split
-      double score = 0.0;
-      for (int i = std::max(1, k - d + 1); i <= std::min(n - 2, k - 1); ++i) score += angles[static_cast<size_t>(i)];
-      score /= (std::min(n - 2, k - 1) - std::max(1, k - d + 1) + 1);
-      if (score < bestScore) {
-        bestScore = score;
-        bestSpan = k;
+    // Sharpest first; a corner that cannot be cut (its spans are too short to split without a side
+    // below minSide) gives way to the next one.
+    std::sort(sharp.begin(), sharp.end(),
+              [&](int x, int y) { return angles[static_cast<size_t>(x)] < angles[static_cast<size_t>(y)]; });
+    bool inserted = false;
+    for (const int corner : sharp) {
+      // Inserting into span k replaces the corners q_{k-d+1} .. q_{k-1} by d points on their sides
+      // (Boehm, spec §1), so the corner is cut by the spans k = corner+1 .. corner+d-1 inside d .. n-1.
+      // Of those, take the one whose cut corners are the most bent on average: it opens the most.
+      int bestSpan = -1;
+      double bestScore = std::numeric_limits<double>::infinity();
+      for (int k = std::max(d, corner + 1); k <= std::min(n - 1, corner + d - 1); ++k) {
+        const double mid = 0.5 * (knots[k] + knots[k + 1]);
+        if (!(mid > knots[k] && mid < knots[k + 1])) continue;  // span too short to split
+        const int first = std::max(1, k - d + 1);
+        const int last = std::min(n - 2, k - 1);
+        double score = 0.0;
+        for (int i = first; i <= last; ++i) score += angles[static_cast<size_t>(i)];
+        score /= (last - first + 1);
+        if (score < bestScore) {
+          bestScore = score;
+          bestSpan = k;
+        }
       }
+      if (bestSpan < 0) continue;
+      const KnotInsertion plan = planKnotInsertion(knots, 0.5 * (knots[bestSpan] + knots[bestSpan + 1]));
+      candidate = points;
+      plan.apply(candidate);
+      bool longEnough = true;
+      for (int i = plan.firstChanged() - 1; longEnough && i <= plan.lastChanged(); ++i) {
+        longEnough = (candidate[static_cast<size_t>(i + 1)] - candidate[static_cast<size_t>(i)]).norm() >= minSide;
+      }
+      if (!longEnough) continue;
+      knots.insertValue(plan.parameter);
+      points.swap(candidate);
+      ++insertions;
+      inserted = true;
+      break;
     }
-    if (bestSpan < 0) break;  // the spans around the corner cannot be split any further
-    insertKnot(knots, points, 0.5 * (knots[bestSpan] + knots[bestSpan + 1]));
-    ++insertions;
+    if (!inserted) break;
   }
   return insertions;
 }

@@ -26,11 +26,13 @@ struct MergeRecord {
 };
 
 // Cuts the sharpest corner (included angle below subdivisionAngle) by inserting a knot in the
-// middle of the span that removes it, and repeats until no corner is below the threshold or the
+// middle of a span that removes it, and repeats until no corner is below the threshold or the
 // polygon has maxControlPoints points. Of the spans that cut the corner, the one whose cut corners
-// are the most bent is used. Returns the number of insertions. The caller guarantees a valid,
-// finite (knots, points) pair with simple interior knots; throws only what the core throws.
-int subdivideSharpCorners(KnotVector& knots, PointList& points, double subdivisionAngle, int maxControlPoints);
+// are the most bent is used; an insertion that would create a side shorter than minSide (metres) is
+// skipped. Returns the number of insertions. The caller guarantees a valid, finite (knots, points)
+// pair; throws only what the core throws.
+int subdivideSharpCorners(KnotVector& knots, PointList& points, double subdivisionAngle, double minSide,
+                          int maxControlPoints);
 
 // Removes knots whose affected corners (the control points the removal replaces) all have included
 // angles above mergingAngle, straightest first, while the polygon has more than minControlPoints

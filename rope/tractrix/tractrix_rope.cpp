@@ -144,12 +144,13 @@ const TractrixStepReport& TractrixRope::moveLeadingEnd(const Vec3& target) {
 
   if (settings_.variant != TractrixVariant::kPolyline) {
     // Step 4: subdivide below the subdivision angle, then merge above the merging angle.
-    report_.insertions = subdivideSharpCorners(knots_, points_, settings_.subdivisionAngle, settings_.maxControlPoints);
+    report_.insertions = subdivideSharpCorners(knots_, points_, settings_.subdivisionAngle, minSide_,
+                                               settings_.maxControlPoints);
     report_.reachedMaxControlPoints = controlPointCount() >= settings_.maxControlPoints;
     if (settings_.variant == TractrixVariant::kSplineSubdivideMerge) {
       const double guard = settings_.guardMerges ? settings_.subdivisionAngle : 0.0;
       report_.merges = mergeStraightCorners(knots_, points_, settings_.mergingAngle, guard, minSide_,
-                                            settings_.minControlPoints, report_.mergeRecords);
+                                            settings_.effectiveMinControlPoints(), report_.mergeRecords);
     }
     // Insertion and removal change the polygon: the new sides are the lengths the pass keeps next.
     if (report_.insertions > 0 || report_.merges > 0) recomputeSides();

@@ -45,9 +45,11 @@ void validateTractrixSettings(const TractrixSettings& settings) {
              "must be in 2.." + std::to_string(kMaxDegree) + " for the spline variants");
   requireInt("settings.segmentCount", settings.segmentCount, settings.degree, kLargest,
              "must be in degree.." + std::to_string(kLargest) + " for the spline variants");
-  requireInt("settings.minControlPoints", settings.minControlPoints, settings.degree + 1, settings.segmentCount + 1,
-             "must be in degree+1..segmentCount+1 = " + std::to_string(settings.degree + 1) + ".." +
-                 std::to_string(settings.segmentCount + 1));
+  if (settings.minControlPoints != 0) {
+    requireInt("settings.minControlPoints", settings.minControlPoints, settings.degree + 1, settings.segmentCount + 1,
+               "must be 0 (the initial count) or in degree+1..segmentCount+1 = " +
+                   std::to_string(settings.degree + 1) + ".." + std::to_string(settings.segmentCount + 1));
+  }
   requireInt("settings.maxControlPoints", settings.maxControlPoints, settings.segmentCount + 1, kLargest,
              "must be in segmentCount+1..2^24 = " + std::to_string(settings.segmentCount + 1) + "..2^24");
 }

@@ -37,9 +37,12 @@ struct TractrixSettings {
   double mergingAngle = degrees(160.0);
 
   // Bounds on the control point count for the spline variants: merging never goes below
-  // minControlPoints (>= degree + 1), subdivision never above maxControlPoints; the initial count
-  // segmentCount + 1 must lie in between. kPolyline ignores them.
-  int minControlPoints = 4;
+  // minControlPoints, subdivision never above maxControlPoints; the initial count segmentCount + 1
+  // must lie in between. minControlPoints = 0 means the initial count, so that merging removes only
+  // what subdivision added ([B] §3.2 motivates merging that way); otherwise it must be >= degree + 1.
+  // Merging below the initial resolution makes later bends cost more length (coarser polygon).
+  // kPolyline ignores both.
+  int minControlPoints = 0;
   int maxControlPoints = 256;
 
   // A merge is accepted only if it leaves no affected corner below subdivisionAngle, so that a
@@ -51,6 +54,9 @@ struct TractrixSettings {
   int lengthGaussPoints = 8;
 
   // Convenience: set both thresholds from degrees.
+  // The floor minControlPoints stands for (resolves the 0 default).
+  int effectiveMinControlPoints() const { return minControlPoints == 0 ? segmentCount + 1 : minControlPoints; }
+
   void setThresholdsDegrees(double subdivisionDegrees, double mergingDegrees) {
     subdivisionAngle = degrees(subdivisionDegrees);
     mergingAngle = degrees(mergingDegrees);

@@ -1,5 +1,7 @@
 #include "bullet_bridge/capsule.h"
 
+#include <cmath>
+
 #include "rope/common/error.h"
 
 namespace rope::bullet {
@@ -14,6 +16,12 @@ void requireFinitePoint(const std::string& name, const btVector3& p) {
 }  // namespace
 
 void requireValidCapsule(const std::string& name, const Capsule& capsule) {
+  // Fast path without building parameter names: this runs once per narrowphase query.
+  bool finite = std::isfinite(capsule.radius);
+  for (int i = 0; i < 3; ++i) {
+    finite = finite && std::isfinite(capsule.a[i]) && std::isfinite(capsule.b[i]);
+  }
+  if (finite && capsule.radius > 0) return;
   requireFinitePoint(name + ".a", capsule.a);
   requireFinitePoint(name + ".b", capsule.b);
   requirePositive(name + ".radius", capsule.radius);

@@ -4,6 +4,7 @@
 #include <BulletCollision/CollisionShapes/btConcaveShape.h>
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
 
+#include <cmath>
 #include <string>
 
 #include "bullet_bridge/concave_contact.h"
@@ -72,7 +73,7 @@ void appendContacts(const Capsule& capsule, const btCollisionShape& shape,
 void findContacts(const Capsule& capsule, const btCollisionObject& object, double margin,
                   std::vector<Contact>& out) {
   requireValidCapsule("capsule", capsule);
-  requireNonNegative("margin", margin);
+  if (!(std::isfinite(margin) && margin >= 0)) requireNonNegative("margin", margin);
   const btCollisionShape* shape = object.getCollisionShape();
   if (shape == nullptr) {
     throw InvalidArgument("object.shape", "null", "the collision object has no shape");

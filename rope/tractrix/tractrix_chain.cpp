@@ -15,7 +15,7 @@ void tractrixChainPass(PointList& points, const std::vector<double>& lengths, co
     throw InvalidArgument("lengths.size()", std::to_string(lengths.size()),
                           "must be points.size() - 1 = " + std::to_string(points.size() - 1));
   }
-  for (int c = 0; c < 3; ++c) requireFinite("newLeading[" + std::to_string(c) + "]", newLeading[c]);
+  for (int c = 0; c < 3; ++c) requireTractrixCoordinate("newLeading[" + std::to_string(c) + "]", newLeading[c]);
 
   Vec3 oldLeading = points[0];
   points[0] = newLeading;
@@ -40,7 +40,7 @@ void validateTractrixChain(const PointList& points, const std::vector<double>& l
   }
   for (size_t i = 0; i < points.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
-      requireFinite("points[" + std::to_string(i) + "][" + std::to_string(c) + "]", points[i][c]);
+      requireTractrixCoordinate("points[" + std::to_string(i) + "][" + std::to_string(c) + "]", points[i][c]);
     }
   }
   for (size_t i = 0; i < lengths.size(); ++i) requirePositive("lengths[" + std::to_string(i) + "]", lengths[i]);

@@ -15,11 +15,12 @@ namespace rope {
 // Moves points[0] to newLeading and every other point by the tractrix. Stops early once a point
 // does not move (the rest of the chain then stays put exactly).
 // Throws InvalidArgument, leaving points unchanged: "lengths.size()" not points.size() - 1 or
-// points.size() < 2, "newLeading[c]" non-finite. The lengths themselves (finite, > 0) and distinct
+// points.size() < 2, "newLeading[c]" not finite or beyond kMaxTractrixCoordinate. The lengths themselves (finite, > 0) and distinct
 // neighbouring points are the caller's invariant and are not re-checked on this hot path.
 void tractrixChainPass(PointList& points, const std::vector<double>& lengths, const Vec3& newLeading);
 
-// Validates a chain once, for callers that build one: "points[i][c]" non-finite, "lengths[i]" not
+// Validates a chain once, for callers that build one: "points[i][c]" not finite or beyond
+// kMaxTractrixCoordinate, "lengths[i]" not
 // finite and > 0. Distinct neighbours follow from the lengths only if the caller keeps them in step.
 void validateTractrixChain(const PointList& points, const std::vector<double>& lengths);
 

@@ -9,6 +9,7 @@
 #include "rope/spline/control_polygon.h"
 #include "rope/spline/curve_interpolation.h"
 #include "rope/tractrix/tractrix_chain.h"
+#include "rope/tractrix/tractrix_segment.h"
 
 namespace rope {
 
@@ -66,7 +67,7 @@ TractrixRope::Initial TractrixRope::initialize(const PointList& shape, const Tra
   std::vector<double> cumulative(shape.size(), 0.0);
   for (size_t i = 0; i < shape.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
-      requireFinite("initialShape[" + std::to_string(i) + "][" + std::to_string(c) + "]", shape[i][c]);
+      requireTractrixCoordinate("initialShape[" + std::to_string(i) + "][" + std::to_string(c) + "]", shape[i][c]);
     }
     if (i == 0) continue;
     const double side = (shape[i] - shape[i - 1]).norm();
@@ -76,7 +77,6 @@ TractrixRope::Initial TractrixRope::initialize(const PointList& shape, const Tra
     }
     cumulative[i] = cumulative[i - 1] + side;
   }
-  requireFinite("initialShape length", cumulative.back());
 
   PointList samples = resample(shape, cumulative, settings.segmentCount);
   for (size_t i = 1; i < samples.size(); ++i) {
@@ -130,7 +130,7 @@ double TractrixRope::measureCurveLength() const {
 }
 
 const TractrixStepReport& TractrixRope::moveLeadingEnd(const Vec3& target) {
-  for (int c = 0; c < 3; ++c) requireFinite("target[" + std::to_string(c) + "]", target[c]);
+  for (int c = 0; c < 3; ++c) requireTractrixCoordinate("target[" + std::to_string(c) + "]", target[c]);
 
   report_.step += 1;
   report_.leadingDisplacement = (target - points_.front()).norm();

@@ -37,7 +37,8 @@ struct TractrixStepReport {
 
 class TractrixRope {
  public:
-  // Lays the rope along initialShape (>= 2 points, finite, consecutive points distinct), leading end
+  // Lays the rope along initialShape (>= 2 points, coordinates finite and within
+  // kMaxTractrixCoordinate, consecutive points distinct), leading end
   // first. The shape is resampled at segmentCount + 1 points equally spaced in arc length; TRX uses
   // them as its polyline, the spline variants interpolate them with a clamped B-spline of
   // settings.degree ([B] §3.3 step 1; chord-length parameters, so s is close to arc length).
@@ -46,7 +47,8 @@ class TractrixRope {
 
   // One step: moves the leading end to target (straight-line move), runs the tractrix chain pass,
   // then (spline variants) subdivides and merges. Throws InvalidArgument("target[c]", ...) for a
-  // non-finite coordinate, leaving the rope unchanged. The report stays valid until the next call.
+  // coordinate that is not finite or beyond kMaxTractrixCoordinate, leaving the rope unchanged.
+  // The report stays valid until the next call.
   const TractrixStepReport& moveLeadingEnd(const Vec3& target);
 
   const TractrixSettings& settings() const { return settings_; }

@@ -11,10 +11,17 @@ namespace {
 constexpr double kTinyDisplacement = 1e-140;
 
 void requireFinitePoint(const char* name, const Vec3& p) {
-  for (int c = 0; c < 3; ++c) requireFinite(std::string(name) + "[" + std::to_string(c) + "]", p[c]);
+  for (int c = 0; c < 3; ++c) requireTractrixCoordinate(std::string(name) + "[" + std::to_string(c) + "]", p[c]);
 }
 
 }  // namespace
+
+void requireTractrixCoordinate(const std::string& parameter, double value) {
+  requireFinite(parameter, value);
+  if (std::fabs(value) > kMaxTractrixCoordinate) {
+    throw InvalidArgument(parameter, formatValue(value), "must be within +-1e100 (metres)");
+  }
+}
 
 Vec3 tractrixMoveTrailing(const Vec3& leading, const Vec3& trailing, const Vec3& newLeading, double length) {
   const Vec3 delta = newLeading - leading;
@@ -77,7 +84,6 @@ Vec3 tractrixTrailingPoint(const Vec3& leading, const Vec3& trailing, const Vec3
                                           formatValue(trailing.z()) + ")",
                           "must differ from leading (zero-length segment)");
   }
-  if (!std::isfinite(length)) throw InvalidArgument("trailing", "overflow", "segment length overflows");
   return tractrixMoveTrailing(leading, trailing, newLeading, length);
 }
 

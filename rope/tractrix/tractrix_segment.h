@@ -14,17 +14,27 @@
 // and alpha = pi (moving straight back over it) translate the segment by q u. alpha = pi is an
 // unstable equilibrium of the motion: any sideways component, however small, grows.
 
+#include <string>
+
 #include "rope/common/types.h"
 
 namespace rope {
+
+// Positions the tractrix functions accept: finite and within +-1e100 m, so that differences and
+// their squares cannot overflow (an overflow would be a floating-point exception, not a result).
+constexpr double kMaxTractrixCoordinate = 1e100;
+
+// Throws InvalidArgument(parameter, value) unless value is finite and |value| <= kMaxTractrixCoordinate.
+void requireTractrixCoordinate(const std::string& parameter, double value);
 
 // Hot path for chains: length > 0 and leading != trailing are the caller's guarantee (unchecked).
 // The returned point is exactly `length` (to rounding) from newLeading, whatever |leading - trailing|
 // is, so a chain that passes its rest lengths never drifts. Metres.
 Vec3 tractrixMoveTrailing(const Vec3& leading, const Vec3& trailing, const Vec3& newLeading, double length);
 
-// Validating form: L = |leading - trailing|. Throws InvalidArgument for a non-finite coordinate
-// ("leading", "trailing", "newLeading") or a zero-length segment ("trailing").
+// Validating form: L = |leading - trailing|. Throws InvalidArgument for a coordinate that is not
+// finite or beyond kMaxTractrixCoordinate ("leading[c]", "trailing[c]", "newLeading[c]") or a
+// zero-length segment ("trailing").
 Vec3 tractrixTrailingPoint(const Vec3& leading, const Vec3& trailing, const Vec3& newLeading);
 
 }  // namespace rope

@@ -95,6 +95,7 @@ TEST(TractrixChain, RejectsBadInputAndLeavesPointsUnchanged) {
   const std::vector<double> lengths = {1.0, 1.0};
   EXPECT_THROW(tractrixChainPass(points, lengths, Vec3(std::nan(""), 0, 0)), InvalidArgument);
   EXPECT_THROW(tractrixChainPass(points, lengths, Vec3(0, -HUGE_VAL, 0)), InvalidArgument);
+  EXPECT_THROW(tractrixChainPass(points, lengths, Vec3(0, 0, 1e250)), InvalidArgument);
   EXPECT_THROW(tractrixChainPass(points, {1.0}, Vec3(1, 0, 0)), InvalidArgument);
   PointList single = {Vec3::Zero()};
   EXPECT_THROW(tractrixChainPass(single, {}, Vec3(1, 0, 0)), InvalidArgument);

@@ -129,6 +129,8 @@ TEST(TractrixSegment, RejectsBadInput) {
   EXPECT_THROW(tractrixTrailingPoint(Vec3(nan, 0, 0), b, a), InvalidArgument);
   EXPECT_THROW(tractrixTrailingPoint(a, Vec3(0, HUGE_VAL, 0), a), InvalidArgument);
   EXPECT_THROW(tractrixTrailingPoint(a, b, Vec3(0, 0, nan)), InvalidArgument);
+  EXPECT_THROW(tractrixTrailingPoint(a, b, Vec3(0, 0, 1e300)), InvalidArgument);  // would overflow
+  EXPECT_THROW(tractrixTrailingPoint(Vec3(-1e200, 0, 0), b, a), InvalidArgument);
   try {
     tractrixTrailingPoint(a, a, b);
     ADD_FAILURE() << "zero-length segment accepted";

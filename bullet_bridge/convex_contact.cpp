@@ -19,7 +19,8 @@ struct CcdBody {
 };
 struct CcdCapsule {
   btVector3 p, q;
-  btScalar radius;  // capsule radius inflated by the speculative margin
+  btScalar radius;   // capsule radius inflated by the speculative margin
+  btVector3 centre;  // the interior point MPR starts its ray from
 };
 
 btVector3 toBt(const ccd_vec3_t* v) { return btVector3(v->v[0], v->v[1], v->v[2]); }
@@ -53,8 +54,7 @@ void capsuleSupport(const void* object, const ccd_vec3_t* direction, ccd_vec3_t*
 }
 
 void capsuleCenter(const void* object, ccd_vec3_t* out) {
-  const CcdCapsule& capsule = *static_cast<const CcdCapsule*>(object);
-  toCcd((capsule.p + capsule.q) * btScalar(0.5), out);
+  toCcd(static_cast<const CcdCapsule*>(object)->centre, out);
 }
 
 btScalar closestAxisParameter(const btVector3& x, const btVector3& p, const btVector3& q) {
@@ -70,7 +70,23 @@ btScalar closestAxisParameter(const btVector3& x, const btVector3& p, const btVe
 void deepContact(const btVector3& p, const btVector3& q, btScalar radius, const ConvexCore& core,
                  btScalar margin, Contact& local) {
   CcdBody body{&core};
-  CcdCapsule inflated{p, q, radius + margin};
+  // MPR measures the depth along the ray between the two interior points. Starting the capsule's
+  // ray at the axis point nearest the body's interior point makes that ray perpendicular to the
+  // rope (a rope is pushed out sideways, never along itself), and it is then the minimum
+  // translation for a body centred on the rope's line. If the body's point lies on the axis, the
+  // ray would be degenerate (libccd would nudge it along x): offset it sideways by half the radius,
+  // which keeps it inside the capsule.
+  const btVector3 interior = core.interiorPoint;
+  const btScalar t = closestAxisParameter(interior, p, q);
+  btVector3 centre = p + (q - p) * t;
+  const btScalar scale = std::max({btScalar(1), core.size, (q - p).length()});
+  if ((centre - interior).length2() <= (1e-9 * scale) * (1e-9 * scale)) {
+    const btVector3 axis = q - p;
+    btVector3 side, unused;
+    btPlaneSpace1(axis.length2() > 0 ? axis.normalized() : btVector3(1, 0, 0), side, unused);
+    centre += side * (radius / 2);
+  }
+  CcdCapsule inflated{p, q, radius + margin, centre};
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.support1 = bodySupport;
@@ -78,7 +94,7 @@ void deepContact(const btVector3& p, const btVector3& q, btScalar radius, const 
   ccd.support2 = capsuleSupport;
   ccd.center2 = capsuleCenter;
   ccd.max_iterations = 200;
-  ccd.mpr_tolerance = 1e-12 * std::max({btScalar(1), core.size, (q - p).length()});
+  ccd.mpr_tolerance = 1e-12 * scale;
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
   const int rc = ccdMPRPenetration(&body, &inflated, &ccd, &depth, &direction, &position);
@@ -89,12 +105,12 @@ void deepContact(const btVector3& p, const btVector3& q, btScalar radius, const 
                            "capsule axis meets the shape (depth " + formatValue(depth) + ")");
   }
   // libccd: moving the capsule (object 2) by depth * direction separates, so `direction` points
-  // from the body into the rope. Its `position` is a point inside the overlap (a barycentric mix
-  // that includes the centres), not a surface point: it only selects where along the axis the
-  // contact acts. The surface points then follow from the normal and the distance.
+  // from the body into the rope. Its `position` is a barycentric mix that includes the interior
+  // points, not a surface point, so it is not used: the contact acts at the ray's axis point and
+  // the surface points follow from the normal and the distance.
   local.normal = normal;
   local.distance = margin - depth;
-  local.t = closestAxisParameter(toBt(&position), p, q);
+  local.t = t;
   local.pointOnCapsule = p + (q - p) * local.t - normal * radius;
   local.pointOnBody = local.pointOnCapsule - normal * local.distance;
 }

@@ -7,9 +7,16 @@
 // than the capsule radius plus the rounding) is computed exactly by GJK
 // (segment_convex_distance.h). Only when the axis itself enters the core does the query fall back
 // to libccd's MPR on the capsule inflated by `margin` against the full shape: distance =
-// margin - MPR depth. MPR measures the depth on the portal crossed by the ray between the two
-// centres, so that deep case is an estimate (it is exact when the centre ray runs along the
-// minimum-translation direction, e.g. a face contact), not the minimum translation distance.
+// margin - MPR depth. MPR measures the depth where the ray between two interior points leaves
+// the Minkowski difference; we start that ray at the axis point nearest the body's centre, so it
+// is perpendicular to the rope. The deep case is therefore an estimate: exact when the minimum
+// translation runs along that ray (e.g. a body centred under the rope, a face contact), otherwise
+// an overestimate of the depth along a direction perpendicular to the rope.
+//
+// MPR alone is not exact even for shallow contacts: with the segment midpoint as the capsule's
+// centre, a sphere of radius 0.5 overlapping a 2 m capsule of radius 0.2 near one end, its centre
+// 0.25 from the axis, came out 0.676 deep instead of 0.45 (libccd 2.1). Hence GJK for every case
+// the axis does not enter.
 
 #include <LinearMath/btTransform.h>
 

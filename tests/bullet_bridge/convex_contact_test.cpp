@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "bullet_bridge/find_contacts.h"
@@ -102,6 +103,48 @@ TEST(ConvexContact, DeepPenetrationUsesMprOnTheInflatedCapsule) {
   EXPECT_NEAR((placement().inverse() * contacts[0].pointOnBody).y(), 0.5, 1e-9);
   EXPECT_TRUE(vectorNear(contacts[0].pointOnCapsule - contacts[0].pointOnBody,
                          contacts[0].normal * contacts[0].distance, 1e-12));
+}
+
+TEST(ConvexContact, DeepDegenerateConfigurationsStayFinite) {
+  // Coincident centres (libccd's first portal direction is then zero), an axis through the body
+  // centre, a point-like axis at the centre: finite contacts with a unit normal, no FP trap.
+  btBoxShape box(btVector3(1, 0.5, 0.25));
+  btSphereShape sphere(0.5);
+  btCylinderShape cylinder(btVector3(0.5, 1, 0.5));
+  const btCollisionShape* shapes[3] = {&box, &sphere, &cylinder};
+  for (const btCollisionShape* shape : shapes) {
+    for (const auto& ends : {std::pair<btVector3, btVector3>({-0.3, 0, 0}, {0.3, 0, 0}),
+                             std::pair<btVector3, btVector3>({0, 0, 0}, {0, 0, 0}),
+                             std::pair<btVector3, btVector3>({0, -0.2, 0}, {0, 0.2, 0}),
+                             std::pair<btVector3, btVector3>({0.1, -2, 0.05}, {-0.1, 2, 0.0})}) {
+      const auto contacts = contactsWith(*shape, ends.first, ends.second, 0.05, 0.01);
+      ASSERT_EQ(contacts.size(), 1u) << shape->getName();
+      const Contact& c = contacts[0];
+      EXPECT_TRUE(std::isfinite(c.distance));
+      EXPECT_LT(c.distance, -0.05) << shape->getName();
+      EXPECT_NEAR(c.normal.length(), 1.0, 1e-9) << shape->getName();
+      EXPECT_TRUE(vectorNear(c.pointOnCapsule - c.pointOnBody, c.normal * c.distance, 1e-12));
+    }
+  }
+  // The sphere with the axis through its centre: the minimum translation is sideways, by
+  // radius + r (along the axis it would be 0.85).
+  const auto contacts = contactsWith(sphere, {-0.3, 0, 0}, {0.3, 0, 0}, 0.05, 0.01);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_NEAR(contacts[0].distance, -0.55, 1e-9);
+  EXPECT_NEAR(contacts[0].normal.dot(placement().getBasis() * btVector3(1, 0, 0)), 0.0, 1e-9);
+}
+
+TEST(ConvexContact, DeepContactPushesTheRopeSideways) {
+  // A long capsule whose axis runs through a small box off its centre line: the ray from the box
+  // centre to the nearest axis point is the minimum translation (0.3 - 0.1 + r along y; along z
+  // it would be 0.4 + r, along the rope 1 + 0.5 + r).
+  btBoxShape box(btVector3(0.5, 0.3, 0.4));
+  const auto contacts = contactsWith(box, {-3, 0.1, 0}, {1, 0.1, 0}, 0.05, 0.02);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_NEAR(contacts[0].distance, -0.25, 1e-9);
+  EXPECT_TRUE(vectorNear(contacts[0].normal, placement().getBasis() * btVector3(0, 1, 0), 1e-9));
+  EXPECT_NEAR(contacts[0].t, 0.75, 1e-9);
+  EXPECT_NEAR((placement().inverse() * contacts[0].pointOnBody).y(), 0.3, 1e-9);
 }
 
 TEST(ConvexContact, SphereNearTheCapsuleEndIsExact) {

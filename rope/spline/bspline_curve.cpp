@@ -12,21 +12,31 @@
 namespace rope {
 namespace {
 
-// Sum over the d+1 non-zero basis functions of span basis.span, up to the given derivative order.
-void accumulate(const BasisValues& basis, const PointList& points, int derivatives, CurvePoint& out) {
-  const int first = basis.firstIndex();
+// Sum over the d+1 non-zero basis functions of span basis.span, up to derivative order Order.
+template <int Order>
+void accumulate(const BasisValues& basis, const PointList& points, CurvePoint& out) {
+  const Vec3* q = points.data() + basis.firstIndex();
   Vec3 p = Vec3::Zero();
   Vec3 d1 = Vec3::Zero();
   Vec3 d2 = Vec3::Zero();
   for (int j = 0; j <= basis.degree; ++j) {
-    const Vec3& q = points[static_cast<size_t>(first + j)];
-    p += basis.d[0][static_cast<size_t>(j)] * q;
-    if (derivatives >= 1) d1 += basis.d[1][static_cast<size_t>(j)] * q;
-    if (derivatives >= 2) d2 += basis.d[2][static_cast<size_t>(j)] * q;
+    p += basis.d[0][static_cast<size_t>(j)] * q[j];
+    if constexpr (Order >= 1) d1 += basis.d[1][static_cast<size_t>(j)] * q[j];
+    if constexpr (Order >= 2) d2 += basis.d[2][static_cast<size_t>(j)] * q[j];
   }
   out.position = p;
   out.firstDerivative = d1;
   out.secondDerivative = d2;
+}
+
+void accumulate(const BasisValues& basis, const PointList& points, int order, CurvePoint& out) {
+  if (order <= 0) {
+    accumulate<0>(basis, points, out);
+  } else if (order == 1) {
+    accumulate<1>(basis, points, out);
+  } else {
+    accumulate<2>(basis, points, out);
+  }
 }
 
 }  // namespace
@@ -36,7 +46,7 @@ CurvePoint evaluateCurve(const KnotVector& knots, const PointList& points, doubl
   BasisValues basis;
   evaluateBasis(knots, span, s, kMaxBasisDerivative, basis);
   CurvePoint out;
-  accumulate(basis, points, kMaxBasisDerivative, out);
+  accumulate<kMaxBasisDerivative>(basis, points, out);
   return out;
 }
 
@@ -45,7 +55,7 @@ Vec3 curvePosition(const KnotVector& knots, const PointList& points, double s) {
   BasisValues basis;
   evaluateBasis(knots, span, s, 0, basis);
   CurvePoint out;
-  accumulate(basis, points, 0, out);
+  accumulate<0>(basis, points, out);
   return out.position;
 }
 
@@ -88,9 +98,16 @@ void checkParameters(const KnotVector& knots, const std::vector<double>& s) {
   }
 }
 
-// Span of s, reusing the previous one when s still lies in it (sorted input never searches).
+// Span of s, reusing the previous one or stepping to the next non-empty one when s has moved
+// just past it (sorted input then never searches); anything else falls back to the binary search.
 int spanNear(const KnotVector& knots, int previous, double s) {
-  if (previous >= 0 && s >= knots[previous] && s < knots[previous + 1]) return previous;
+  if (previous >= 0) {
+    if (s >= knots[previous] && s < knots[previous + 1]) return previous;
+    const int last = knots.controlPointCount() - 1;
+    int next = previous + 1;
+    while (next < last && knots[next + 1] == knots[next]) ++next;  // skip empty spans
+    if (next <= last && s >= knots[next] && s < knots[next + 1]) return next;
+  }
   return knots.findSpanUnchecked(s);
 }
 
@@ -104,7 +121,7 @@ void BSplineCurve::evaluate(const std::vector<double>& s, std::vector<CurvePoint
   for (size_t i = 0; i < s.size(); ++i) {
     span = spanNear(knots_, span, s[i]);
     evaluateBasis(knots_, span, s[i], kMaxBasisDerivative, basis);
-    accumulate(basis, points_, kMaxBasisDerivative, out[i]);
+    accumulate<kMaxBasisDerivative>(basis, points_, out[i]);
   }
 }
 
@@ -117,7 +134,7 @@ void BSplineCurve::positions(const std::vector<double>& s, PointList& out) const
   for (size_t i = 0; i < s.size(); ++i) {
     span = spanNear(knots_, span, s[i]);
     evaluateBasis(knots_, span, s[i], 0, basis);
-    accumulate(basis, points_, 0, point);
+    accumulate<0>(basis, points_, point);
     out[i] = point.position;
   }
 }

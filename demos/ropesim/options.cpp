@@ -1,0 +1,126 @@
+#include "demos/ropesim/options.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "demos/scenes/demo_scene.h"
+
+namespace rope::demos {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& option, const std::string& value, const std::string& reason) {
+  throw std::invalid_argument(option + " " + value + ": " + reason);
+}
+
+int parseInteger(const std::string& option, const std::string& text, int low, int high) {
+  std::size_t used = 0;
+  long value = 0;
+  try {
+    value = std::stol(text, &used);
+  } catch (const std::exception&) {
+    fail(option, text, "expected a whole number");
+  }
+  if (used != text.size()) fail(option, text, "expected a whole number");
+  if (value < low || value > high) {
+    fail(option, text, "must be in " + std::to_string(low) + ".." + std::to_string(high));
+  }
+  return static_cast<int>(value);
+}
+
+double parsePositive(const std::string& option, const std::string& text) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    fail(option, text, "expected a number");
+  }
+  if (used != text.size() || !std::isfinite(value) || !(value > 0.0)) {
+    fail(option, text, "expected a finite number > 0");
+  }
+  return value;
+}
+
+}  // namespace
+
+RopesimOptions parseRopesimOptions(const std::vector<std::string>& arguments) {
+  RopesimOptions options;
+  if (arguments.empty()) {
+    options.help = true;
+    return options;
+  }
+  for (std::size_t i = 0; i < arguments.size(); ++i) {
+    const std::string& argument = arguments[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= arguments.size()) fail(argument, "", "needs a value");
+      return arguments[++i];
+    };
+    if (argument == "--help" || argument == "-h") {
+      options.help = true;
+    } else if (argument == "--out") {
+      options.video = value();
+    } else if (argument == "--frames") {
+      options.framesDirectory = value();
+    } else if (argument == "--seconds") {
+      options.seconds = parsePositive(argument, value());
+    } else if (argument == "--fps") {
+      options.framesPerSecond = parseInteger(argument, value(), 1, 240);
+    } else if (argument == "--size") {
+      const std::string& size = value();
+      const std::size_t x = size.find('x');
+      if (x == std::string::npos) fail(argument, size, "expected WIDTHxHEIGHT, e.g. 1280x720");
+      options.width = parseInteger(argument, size.substr(0, x), 16, 8192);
+      options.height = parseInteger(argument, size.substr(x + 1), 16, 8192);
+      if (options.width % 2 != 0 || options.height % 2 != 0) {
+        fail(argument, size, "width and height must be even (H.264 with yuv420p)");
+      }
+    } else if (argument == "--no-render") {
+      options.render = false;
+    } else if (argument == "--stats") {
+      options.statsFile = value();
+    } else if (argument == "--quiet") {
+      options.quiet = true;
+    } else if (!argument.empty() && argument[0] == '-') {
+      fail(argument, "", "unknown option (see --help)");
+    } else if (options.scene.empty()) {
+      if (findScene(argument) == nullptr) fail("scene", argument, "unknown scene (see --help)");
+      options.scene = argument;
+    } else {
+      fail("scene", argument, "only one scene per run");
+    }
+  }
+  if (!options.help && options.scene.empty()) fail("scene", "", "missing (see --help)");
+  if (!options.render && (options.video || options.framesDirectory)) {
+    fail("--no-render", "", "cannot be combined with --out or --frames");
+  }
+  if (options.render && !options.video && !options.framesDirectory) {
+    options.video = options.scene + ".mp4";
+  }
+  return options;
+}
+
+std::string ropesimUsage() {
+  std::ostringstream text;
+  text << "usage: ropesim <scene> [options]\n\n"
+          "Runs a SplineRope scene, renders it headless (OSMesa) and writes an H.264 video.\n\n"
+          "scenes:\n";
+  for (const SceneEntry& entry : sceneCatalogue()) {
+    text << "  " << entry.name << std::string(entry.name.size() < 10 ? 10 - entry.name.size() : 1, ' ')
+         << entry.description << " (" << entry.defaultSeconds << " s)\n";
+  }
+  text << "\noptions:\n"
+          "  --out FILE.mp4     video output (default: <scene>.mp4)\n"
+          "  --frames DIR       also write every frame as DIR/frame_00000.png ...\n"
+          "  --seconds S        simulated seconds (default: the scene's)\n"
+          "  --fps N            frames per second of the video (default 30)\n"
+          "  --size WxH         frame size in pixels, even numbers (default 1280x720)\n"
+          "  --no-render        simulate and measure only\n"
+          "  --stats FILE.json  write run statistics as one JSON object\n"
+          "  --quiet            no progress output\n"
+          "  --help             this text\n";
+  return text.str();
+}
+
+}  // namespace rope::demos

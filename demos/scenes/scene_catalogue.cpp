@@ -1,0 +1,26 @@
+#include "demos/scenes/demo_scene.h"
+#include "demos/scenes/hang_scene.h"
+#include "demos/scenes/tractrix_scene.h"
+
+namespace rope::demos {
+
+const std::vector<SceneEntry>& sceneCatalogue() {
+  static const std::vector<SceneEntry> catalogue = {
+      {"hang",
+       "catenary: a 1.25 m rope whose pinned ends are drawn together to 1 m and left to settle",
+       10.0, [] { return std::unique_ptr<DemoScene>(new HangScene(HangSceneSettings{})); }},
+      {"tractrix",
+       "follow-the-leader: TRX with 20 segments beside TRX_SD_MRG on the same path",
+       10.0, [] { return std::unique_ptr<DemoScene>(new TractrixScene(TractrixSceneSettings{})); }},
+  };
+  return catalogue;
+}
+
+const SceneEntry* findScene(const std::string& name) {
+  for (const SceneEntry& entry : sceneCatalogue()) {
+    if (entry.name == name) return &entry;
+  }
+  return nullptr;
+}
+
+}  // namespace rope::demos

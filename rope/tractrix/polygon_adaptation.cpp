@@ -89,18 +89,18 @@ int subdivideSharpCorners(KnotVector& knots, PointList& points, double subdivisi
   return insertions;
 }
 
-int mergeStraightCorners(KnotVector& knots, PointList& points, double mergingAngle, double guardAngle,
-                         double minSide, int minControlPoints, std::vector<MergeRecord>& records) {
+int mergeStraightCorners(KnotVector& knots, PointList& points, const MergeLimits& limits,
+                         std::vector<MergeRecord>& records) {
   const int d = knots.degree();
   int merges = 0;
   std::vector<double> rejected;  // knot values whose merge the guard refused in this call
   PointList candidate;
-  while (static_cast<int>(points.size()) > minControlPoints) {
+  while (static_cast<int>(points.size()) > limits.minControlPoints) {
     const int n = static_cast<int>(points.size());
     // Removing the knot at index r replaces q_{r-d} .. q_{r-1} (knot_removal.h); rank the interior
     // knots by the smallest angle among those corners, straightest first.
     int bestIndex = -1;
-    double bestAngle = mergingAngle;
+    double bestAngle = limits.mergingAngle;
     for (int r = d + 1; r <= n - 1; ++r) {
       if (knots[r] == knots[r + 1] || knots[r] == knots[r - 1]) continue;  // only simple knots
       if (std::find(rejected.begin(), rejected.end(), knots[r]) != rejected.end()) continue;
@@ -118,13 +118,13 @@ int mergeStraightCorners(KnotVector& knots, PointList& points, double mergingAng
     plan.apply(candidate);
     // After removal the new points sit at r-d .. r-2; their corners, both neighbours and the sides
     // between them changed.
-    bool accept = true;
+    bool accept = plan.chosenShapeError() <= limits.maxShapeError;
     const int last = std::min(static_cast<int>(candidate.size()) - 2, plan.knotIndex - 1);
     for (int i = std::max(0, plan.knotIndex - d - 1); accept && i <= last; ++i) {
-      accept = (candidate[static_cast<size_t>(i + 1)] - candidate[static_cast<size_t>(i)]).norm() >= minSide;
+      accept = (candidate[static_cast<size_t>(i + 1)] - candidate[static_cast<size_t>(i)]).norm() >= limits.minSide;
     }
-    if (accept && guardAngle > 0.0) {
-      accept = smallestAngle(candidate, plan.knotIndex - d - 1, plan.knotIndex - 1) >= guardAngle;
+    if (accept && limits.guardAngle > 0.0) {
+      accept = smallestAngle(candidate, plan.knotIndex - d - 1, plan.knotIndex - 1) >= limits.guardAngle;
     }
     if (!accept) {
       rejected.push_back(s);

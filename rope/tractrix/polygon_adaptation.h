@@ -34,11 +34,21 @@ struct MergeRecord {
 int subdivideSharpCorners(KnotVector& knots, PointList& points, double subdivisionAngle, double minSide,
                           int maxControlPoints);
 
+// What mergeStraightCorners may do.
+struct MergeLimits {
+  double mergingAngle = 0.0;   // radians: a knot is a candidate when all its corners are above this
+  double guardAngle = 0.0;     // radians: reject a merge leaving an affected corner below this (0: off)
+  double minSide = 0.0;        // metres: reject a merge leaving a side shorter than this
+  double maxShapeError = 0.0;  // metres: reject a merge that moves the curve further than this
+  int minControlPoints = 0;    // never merge below this count
+};
+
 // Removes knots whose affected corners (the control points the removal replaces) all have included
-// angles above mergingAngle, straightest first, while the polygon has more than minControlPoints
-// points. If guardAngle > 0, a candidate that would leave an affected corner below guardAngle (or a
-// side shorter than minSide) is rejected. Appends one MergeRecord per merge; returns their number.
-int mergeStraightCorners(KnotVector& knots, PointList& points, double mergingAngle, double guardAngle,
-                         double minSide, int minControlPoints, std::vector<MergeRecord>& records);
+// angles above limits.mergingAngle, straightest first, while the polygon has more than
+// limits.minControlPoints points. The core's plan picks the candidate with the smaller length error;
+// a plan that breaks one of the other limits is rejected and the next knot is tried. Appends one
+// MergeRecord per merge; returns their number.
+int mergeStraightCorners(KnotVector& knots, PointList& points, const MergeLimits& limits,
+                         std::vector<MergeRecord>& records);
 
 }  // namespace rope

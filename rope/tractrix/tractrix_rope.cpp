@@ -148,9 +148,13 @@ const TractrixStepReport& TractrixRope::moveLeadingEnd(const Vec3& target) {
                                                settings_.maxControlPoints);
     report_.reachedMaxControlPoints = controlPointCount() >= settings_.maxControlPoints;
     if (settings_.variant == TractrixVariant::kSplineSubdivideMerge) {
-      const double guard = settings_.guardMerges ? settings_.subdivisionAngle : 0.0;
-      report_.merges = mergeStraightCorners(knots_, points_, settings_.mergingAngle, guard, minSide_,
-                                            settings_.effectiveMinControlPoints(), report_.mergeRecords);
+      MergeLimits limits;
+      limits.mergingAngle = settings_.mergingAngle;
+      limits.guardAngle = settings_.guardMerges ? settings_.subdivisionAngle : 0.0;
+      limits.minSide = minSide_;
+      limits.maxShapeError = settings_.maxMergeShapeError * initialLength_;
+      limits.minControlPoints = settings_.effectiveMinControlPoints();
+      report_.merges = mergeStraightCorners(knots_, points_, limits, report_.mergeRecords);
     }
     // Insertion and removal change the polygon: the new sides are the lengths the pass keeps next.
     if (report_.insertions > 0 || report_.merges > 0) recomputeSides();

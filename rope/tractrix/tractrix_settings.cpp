@@ -34,6 +34,7 @@ void validateTractrixSettings(const TractrixSettings& settings) {
   if (!(settings.mergingAngle < kTractrixPi)) {
     throw InvalidArgument("settings.mergingAngle", formatValue(settings.mergingAngle), "must be < pi (radians)");
   }
+  requirePositive("settings.maxMergeShapeError", settings.maxMergeShapeError);
   requireInt("settings.lengthGaussPoints", settings.lengthGaussPoints, 1, kMaxGaussPoints,
              "must be in 1.." + std::to_string(kMaxGaussPoints));
   constexpr int kLargest = 1 << 24;  // keeps counts and their sums far from int overflow

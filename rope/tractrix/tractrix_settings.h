@@ -49,6 +49,11 @@ struct TractrixSettings {
   // merge never provokes a subdivision at the next check (no flicker). Off = [B]'s plain rule.
   bool guardMerges = true;
 
+  // A merge may move the curve by at most this fraction of the initial curve length (the removal's
+  // shape error, which bounds the displacement). Keeps the motion visibly continuous; [B] looks at
+  // the length error only. Finite, > 0; 1e300 effectively switches it off.
+  double maxMergeShapeError = 0.01;
+
   // Gauss–Legendre points per knot span for the per-step curve length (1..kMaxGaussPoints). The
   // integrand is smooth on a span; 8 points give ~1e-9 relative on the shapes a rope takes.
   int lengthGaussPoints = 8;

@@ -23,6 +23,16 @@ double smallestCorner(const PointList& points) {
   return smallest;
 }
 
+MergeLimits limits(double mergingDegrees, double guardDegrees, int minControlPoints) {
+  MergeLimits result;
+  result.mergingAngle = degrees(mergingDegrees);
+  result.guardAngle = degrees(guardDegrees);
+  result.minSide = 1e-9;
+  result.maxShapeError = 1.0;
+  result.minControlPoints = minControlPoints;
+  return result;
+}
+
 double fullLength(const KnotVector& knots, const PointList& points) {
   ArcLengthOptions options;
   options.gaussPoints = 24;
@@ -99,8 +109,8 @@ TEST(PolygonAdaptation, MergingUndoesRefinementOfAStraightishCurveAndReportsItsE
   for (;;) {
     const double lengthBefore = fullLength(knots, points);
     const size_t recordsBefore = records.size();
-    const int merged = mergeStraightCorners(knots, points, degrees(160.0), degrees(140.0), 1e-9,
-                                            static_cast<int>(points.size()) - 1, records);
+    const int merged =
+        mergeStraightCorners(knots, points, limits(160.0, 140.0, static_cast<int>(points.size()) - 1), records);
     if (merged == 0) break;
     ASSERT_EQ(merged, 1);
     ASSERT_EQ(records.size(), recordsBefore + 1);
@@ -123,14 +133,35 @@ TEST(PolygonAdaptation, MergingRespectsTheFloorAndTheThreshold) {
   PointList points;
   bentPolygon(12, 0.0, knots, points);  // straight: every knot is removable exactly
   std::vector<MergeRecord> records;
-  EXPECT_EQ(mergeStraightCorners(knots, points, degrees(160.0), degrees(140.0), 1e-9, 9, records), 3);
+  EXPECT_EQ(mergeStraightCorners(knots, points, limits(160.0, 140.0, 9), records), 3);
   EXPECT_EQ(points.size(), 9u);
   for (const MergeRecord& record : records) EXPECT_LT(record.chosenLengthError(), 1e-12);
   // Corners at 150° are below the merging angle: nothing to merge.
   bentPolygon(9, 30.0, knots, points);
   records.clear();
-  EXPECT_EQ(mergeStraightCorners(knots, points, degrees(160.0), degrees(140.0), 1e-9, 4, records), 0);
+  EXPECT_EQ(mergeStraightCorners(knots, points, limits(160.0, 140.0, 4), records), 0);
   EXPECT_TRUE(records.empty());
+}
+
+TEST(PolygonAdaptation, MergingRespectsTheShapeErrorLimit) {
+  // Corners of 165° are mergeable, but no removal is exact there: with a tiny shape limit every
+  // candidate is rejected, with a generous one merges happen and stay within it.
+  KnotVector knots = KnotVector::clampedUniform(3, 4);
+  PointList points;
+  bentPolygon(10, 15.0, knots, points);
+  std::vector<MergeRecord> records;
+  MergeLimits tight = limits(160.0, 0.0, 4);
+  tight.maxShapeError = 1e-6;
+  const PointList before = points;
+  EXPECT_EQ(mergeStraightCorners(knots, points, tight, records), 0);
+  EXPECT_EQ(points, before);
+  MergeLimits loose = limits(160.0, 0.0, 4);
+  loose.maxShapeError = 0.2;
+  EXPECT_GT(mergeStraightCorners(knots, points, loose, records), 0);
+  for (const MergeRecord& record : records) {
+    EXPECT_GT(record.chosenShapeError(), 1e-6);
+    EXPECT_LE(record.chosenShapeError(), 0.2);
+  }
 }
 
 }  // namespace

@@ -67,6 +67,8 @@ TEST(TractrixSettings, RejectsBadCounts) {
   expectRejected([](TractrixSettings& s) { s.minControlPoints = 8; }, "settings.minControlPoints");
   expectRejected([](TractrixSettings& s) { s.maxControlPoints = 6; }, "settings.maxControlPoints");
   expectRejected([](TractrixSettings& s) { s.lengthGaussPoints = 0; }, "settings.lengthGaussPoints");
+  expectRejected([](TractrixSettings& s) { s.maxMergeShapeError = 0.0; }, "settings.maxMergeShapeError");
+  expectRejected([](TractrixSettings& s) { s.maxMergeShapeError = std::nan(""); }, "settings.maxMergeShapeError");
   expectRejected([](TractrixSettings& s) { s.lengthGaussPoints = 33; }, "settings.lengthGaussPoints");
   expectRejected([](TractrixSettings& s) { s.variant = static_cast<TractrixVariant>(7); }, "settings.variant");
   expectRejected([](TractrixSettings& s) {

@@ -1,0 +1,108 @@
+// Tractrix kinematics: [B] §4's whole 52-step planar experiment per variant, and one chain pass
+// per segment for chains of 20 .. 10,000 segments (spec §4: O(n)).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "rope/tractrix/tractrix_chain.h"
+#include "rope/tractrix/tractrix_rope.h"
+
+namespace {
+
+using rope::PointList;
+using rope::Vec3;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The S-bend of tests/rope/tractrix/tractrix_experiment_test.cpp: 1 m pull along the rope, then
+// left 90° and right 180° on 1.2 m radii, then straight; 52 targets 0.5 m apart.
+PointList experimentTargets() {
+  PointList targets;
+  for (int k = 1; k <= 52; ++k) {
+    double s = 0.5 * k;
+    Vec3 p = Vec3::Zero();
+    double heading = 0.0;
+    auto run = [&](double length) {
+      const double l = std::min(length, s);
+      p += l * Vec3(std::cos(heading), std::sin(heading), 0.0);
+      s -= l;
+    };
+    auto arc = [&](double turn) {
+      const double radius = 1.2;
+      const double l = std::min(radius * std::fabs(turn), s);
+      const double sign = turn > 0 ? 1.0 : -1.0;
+      const Vec3 centre = p + sign * radius * Vec3(-std::sin(heading), std::cos(heading), 0.0);
+      const double start = std::atan2(p.y() - centre.y(), p.x() - centre.x());
+      const double end = start + sign * l / radius;
+      p = centre + radius * Vec3(std::cos(end), std::sin(end), 0.0);
+      heading += sign * l / radius;
+      s -= l;
+    };
+    run(1.0);
+    if (s > 0) arc(0.5 * kPi);
+    if (s > 0) arc(-kPi);
+    if (s > 0) run(s);
+    targets.push_back(p);
+  }
+  return targets;
+}
+
+// Construction (interpolation of the 5 m straight object) plus the 52 steps, as a user would run it.
+void runExperiment(benchmark::State& state, rope::TractrixVariant variant, int segments) {
+  const PointList targets = experimentTargets();
+  const PointList shape = {Vec3(0, 0, 0), Vec3(-5, 0, 0)};
+  rope::TractrixSettings settings;
+  settings.variant = variant;
+  settings.segmentCount = segments;
+  int maxCount = 0;
+  for (auto _ : state) {
+    rope::TractrixRope rope(shape, settings);
+    for (const Vec3& target : targets) {
+      const rope::TractrixStepReport& report = rope.moveLeadingEnd(target);
+      maxCount = std::max(maxCount, report.controlPointCount);
+    }
+    benchmark::DoNotOptimize(rope.controlPoints().data());
+  }
+  state.counters["max_control_points"] = maxCount;
+}
+
+void BM_Experiment52Steps_TRX_SD_MRG(benchmark::State& state) {
+  runExperiment(state, rope::TractrixVariant::kSplineSubdivideMerge, 6);
+}
+void BM_Experiment52Steps_TRX_SD(benchmark::State& state) {
+  runExperiment(state, rope::TractrixVariant::kSplineSubdivide, 6);
+}
+void BM_Experiment52Steps_TRX_20(benchmark::State& state) {
+  runExperiment(state, rope::TractrixVariant::kPolyline, 20);
+}
+BENCHMARK(BM_Experiment52Steps_TRX_SD_MRG)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Experiment52Steps_TRX_SD)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Experiment52Steps_TRX_20)->Unit(benchmark::kMicrosecond);
+
+// One chain pass over n segments of 0.1 m. The chain lies along -x and the leading end wobbles
+// while advancing along +x, so the displacement does not die out: every segment moves every pass
+// (checked after timing) and the time per segment is the real per-segment cost.
+void BM_ChainPass(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  PointList points;
+  for (int i = 0; i <= n; ++i) points.emplace_back(-0.1 * i, 0.0, 0.0);
+  const std::vector<double> lengths(static_cast<size_t>(n), 0.1);
+  Vec3 leading = points[0];
+  long pass = 0;
+  bool tailMovedEveryPass = true;
+  for (auto _ : state) {
+    ++pass;
+    leading += Vec3(0.02, 0.01 * std::sin(0.05 * pass), 0.005 * std::cos(0.07 * pass));
+    const Vec3 tail = points.back();
+    rope::tractrixChainPass(points, lengths, leading);
+    tailMovedEveryPass = tailMovedEveryPass && !(points.back() == tail);
+    benchmark::DoNotOptimize(points.data());
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+  state.counters["ns_per_segment"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * n, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["tail_moved_every_pass"] = tailMovedEveryPass ? 1 : 0;
+}
+BENCHMARK(BM_ChainPass)->Arg(20)->Arg(100)->Arg(1000)->Arg(10000);
+
+}  // namespace

@@ -32,7 +32,8 @@ void requireSupported(const btCollisionShape& shape) {
     }
     return;
   }
-  if (shape.isConcave()) return;
+  // A signed-distance-field shape reports no triangles, so it would silently never collide.
+  if (shape.isConcave() && shape.getShapeType() != SDF_SHAPE_PROXYTYPE) return;
   ConvexCore core;
   if (!makeConvexCore(shape, core)) {
     throw InvalidArgument("object.shape", shapeTypeName(shape),

@@ -3,7 +3,8 @@
 //
 // Supported shapes: btSphereShape, btCapsuleShape{,X,Z}, btBoxShape, btCylinderShape{,X,Z},
 // btConeShape{,X,Z}, btConvexHullShape (convex_contact.h: at most one contact), btStaticPlaneShape
-// and every other btConcaveShape (concave_contact.h: up to two plane contacts, one per triangle),
+// and every other btConcaveShape except btSdfCollisionShape (concave_contact.h: up to two plane
+// contacts, one per triangle),
 // and btCompoundShape of any of these, nested to any depth (children placed by their local
 // transforms; Contact::childIndex is the index in the object's top-level compound).
 

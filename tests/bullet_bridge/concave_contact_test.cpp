@@ -124,6 +124,7 @@ TEST(TriangleMeshContacts, CapsuleLyingOnAFlatMesh) {
   auto mesh = flatGrid();
   btBvhTriangleMeshShape shape(mesh.get(), true);
   ASSERT_EQ(mesh->getNumTriangles(), 100);
+  shape.setMargin(0.02);  // Bullet inflates the triangles by the concave shape's margin
   const btVector3 up = placement().getBasis() * btVector3(0, 1, 0);
   const btScalar meshMargin = shape.getMargin();
   for (double gap : {0.03, -0.02}) {
@@ -180,6 +181,7 @@ TEST(TriangleMeshContacts, HeightfieldSlope) {
     for (int i = 0; i < width; ++i) heights[j * width + i] = 0.5 * i;
   }
   btHeightfieldTerrainShape terrain(width, length, heights.data(), 0.0, 5.0, 1, false);
+  terrain.setMargin(0.01);
   const btVector3 n = btVector3(-0.5, 1, 0).normalized();
   const btVector3 onSurface(1.0, 0.5, 0.3);
   const btScalar m = terrain.getMargin();

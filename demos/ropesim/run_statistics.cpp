@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 namespace rope::demos {
@@ -84,6 +85,8 @@ void RunStatistics::addFrame(double time, const StepMeasurements& latest) {
   frameTimes_.push_back(time);
   frameControlPoints_.push_back(latest.controlPoints);
   frameMaxStrain_.push_back(latest.maxStrain);
+  // Every series has one entry per frame; frames that did not report it get NaN (null in JSON).
+  const std::size_t frames = frameTimes_.size();
   for (const auto& [name, value] : latest.series) {
     auto series = std::find_if(frameSeries_.begin(), frameSeries_.end(),
                                [&](const auto& entry) { return entry.first == name; });
@@ -91,8 +94,10 @@ void RunStatistics::addFrame(double time, const StepMeasurements& latest) {
       frameSeries_.push_back({name, {}});
       series = frameSeries_.end() - 1;
     }
+    series->second.resize(frames - 1, std::numeric_limits<double>::quiet_NaN());
     series->second.push_back(value);
   }
+  for (auto& entry : frameSeries_) entry.second.resize(frames, std::numeric_limits<double>::quiet_NaN());
 }
 
 double RunStatistics::stepTimeMedian() const { return quantile(stepMicroseconds_, 0.5); }

@@ -1,0 +1,42 @@
+#include "demos/scenes/hang_scene.h"
+
+#include <gtest/gtest.h>
+
+#include "rope/common/error.h"
+
+namespace rope::demos {
+namespace {
+
+TEST(HangScene, SettlesToTheAnalyticCatenary) {
+  HangScene scene(HangSceneSettings{});
+  const int steps = static_cast<int>(10.0 / scene.timeStep());
+  for (int i = 0; i < steps; ++i) scene.step();
+  // Slack ratio 1.25 over 1 m: the inextensible catenary sags 0.3318 m; this rope stretches by
+  // well under a percent, so the sag must match within 1%.
+  EXPECT_NEAR(scene.analyticSag(), 0.33180, 5e-5);
+  EXPECT_NEAR(scene.sag() / scene.analyticSag(), 1.0, 0.01);
+  EXPECT_LE(scene.rod().controlPointCount(), 16);
+  // At rest: the pins hold and the rope has stopped swinging.
+  EXPECT_LT(scene.rod().kineticEnergy(), 1e-6);
+  EXPECT_NEAR(scene.rod().position(scene.rod().beginParameter()).x(), -0.5, 1e-9);
+  EXPECT_NEAR(scene.rod().position(scene.rod().endParameter()).x(), 0.5, 1e-9);
+}
+
+TEST(HangScene, DrawsTheRopeAndTheGround) {
+  HangScene scene(HangSceneSettings{});
+  render::Scene drawList;
+  scene.draw(drawList);
+  EXPECT_TRUE(drawList.hasGround());
+  EXPECT_GE(drawList.items.size(), 2u);  // ground and tube (plus the control polygon overlay)
+}
+
+TEST(HangScene, RejectsASpanLongerThanTheRope) {
+  HangSceneSettings settings;
+  settings.span = 2.0;
+  EXPECT_THROW(HangScene{settings}, InvalidArgument);
+  settings.span = -1.0;
+  EXPECT_THROW(HangScene{settings}, InvalidArgument);
+}
+
+}  // namespace
+}  // namespace rope::demos

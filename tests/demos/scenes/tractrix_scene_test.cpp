@@ -1,0 +1,42 @@
+#include "demos/scenes/tractrix_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rope/common/error.h"
+
+namespace rope::demos {
+namespace {
+
+TEST(TractrixScene, LeadingEndsFollowThePathAndTrxKeepsItsLength) {
+  TractrixScene scene(TractrixSceneSettings{});
+  const double length = scene.polylineRope().initialLength();
+  const int steps = static_cast<int>(10.0 / scene.timeStep());
+  int maxPoints = 0;
+  for (int i = 0; i < steps; ++i) {
+    const StepMeasurements m = scene.step();
+    maxPoints = std::max(maxPoints, m.controlPoints);
+    ASSERT_EQ(m.series.size(), 4u);
+    // TRX is an exact polyline of rigid segments.
+    ASSERT_NEAR(m.series[0].second, 0.0, 1e-12) << "step " << i;
+  }
+  EXPECT_NEAR(length, 1.5, 1e-9);
+  // Ten seconds is one lap: both leading ends are back where they started.
+  EXPECT_NEAR((scene.polylineRope().leadingEnd() - scene.pathPoint(Vec3(-1.3, 0.015, 0.0), 0.0)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((scene.splineRope().leadingEnd() - scene.pathPoint(Vec3(1.3, 0.015, 0.0), 0.0)).norm(), 0.0, 1e-9);
+  // The adaptive rope subdivided in the turns.
+  EXPECT_GT(maxPoints, 7);
+}
+
+TEST(TractrixScene, RejectsNonPositiveSettings) {
+  TractrixSceneSettings settings;
+  settings.ropeLength = 0.0;
+  EXPECT_THROW(TractrixScene{settings}, InvalidArgument);
+  settings = TractrixSceneSettings{};
+  settings.timeStep = std::nan("");
+  EXPECT_THROW(TractrixScene{settings}, InvalidArgument);
+}
+
+}  // namespace
+}  // namespace rope::demos

@@ -8,8 +8,8 @@
 namespace rope::render {
 
 struct PolylineOptions {
-  double lineRadius = 0.004;   // metres, > 0
-  double pointRadius = 0.012;  // metres, >= 0 (0: no balls)
+  double lineRadius = 0.005;   // metres, > 0
+  double pointRadius = 0.014;  // metres, >= 0 (0: no balls)
   int sides = 8;               // 3..64, also the balls' segments
   Rgb colour{0.1f, 0.1f, 0.12f};
 };

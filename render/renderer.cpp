@@ -126,26 +126,32 @@ void main() {
 const char* const kGroundFragmentShader = R"(
 in vec3 vWorld;
 in vec3 vLight;
-uniform vec3 uAxisU;       // grid directions in the plane
+uniform vec3 uAxisU;       // grid directions in the plane, divided by the grid spacing
 uniform vec3 uAxisV;
-uniform float uGridSpacing;
 uniform vec3 uLit;         // display colour in full light
 uniform vec3 uUnlit;       // display colour in shadow
 uniform vec3 uHaze;        // display colour of the haze
+uniform float uFogStart2;  // squared haze start distance
+uniform float uFogScale2;  // 1 / (end^2 - start^2)
 void main() {
-  vec2 minorCell = vec2(dot(vWorld, uAxisU), dot(vWorld, uAxisV)) / uGridSpacing;
-  vec2 majorCell = minorCell * 0.2;
+  // Cell coordinates: the plane's grid directions were divided by the spacing on the CPU.
+  vec2 minorCell = vec2(dot(vWorld, uAxisU), dot(vWorld, uAxisV));
   vec2 wMinor = fwidth(minorCell);
-  vec2 wMajor = wMinor * 0.2;
-  // Distance to the nearest line in pixels; lines fade out where cells shrink to a few pixels, so
-  // the grid never turns into moire towards the horizon.
-  vec2 gMinor = abs(fract(minorCell - 0.5) - 0.5) / max(wMinor, vec2(1e-6));
-  vec2 gMajor = abs(fract(majorCell - 0.5) - 0.5) / max(wMajor * 1.5, vec2(1e-6));
-  float minor = (1.0 - min(min(gMinor.x, gMinor.y), 1.0)) * (1.0 - smoothstep(0.05, 0.25, max(wMinor.x, wMinor.y)));
-  float major = (1.0 - min(min(gMajor.x, gMajor.y), 1.0)) * (1.0 - smoothstep(0.05, 0.25, max(wMajor.x, wMajor.y)));
-  float line = max(0.3 * minor, 0.55 * major);
+  // Inverse line width in cells, shared by both line sets (major lines are 5 cells apart and 1.5
+  // times as wide), so the pixel needs two divisions rather than four.
+  vec2 inverse = 1.0 / max(wMinor, vec2(1e-6));
+  vec2 gMinor = abs(fract(minorCell - 0.5) - 0.5) * inverse;
+  vec2 gMajor = abs(fract(minorCell * 0.2 - 0.5) - 0.5) * inverse * (1.0 / 0.3);
+  // Lines fade out where cells shrink to a few pixels, so the grid never turns into moire towards
+  // the horizon (linear ramps: cheaper than smoothstep, and invisible at this scale).
+  float w = max(wMinor.x, wMinor.y);
+  float minor = (1.0 - min(min(gMinor.x, gMinor.y), 1.0)) * clamp(1.25 - 5.0 * w, 0.0, 1.0);
+  float major = (1.0 - min(min(gMajor.x, gMajor.y), 1.0)) * clamp(1.25 - w, 0.0, 1.0);
+  float line = max(0.22 * minor, 0.4 * major);
   vec3 colour = mix(uUnlit, uLit, shadowFactor(vLight)) * (1.0 - line);
-  float haze = smoothstep(uFogStart, uFogEnd, length(uEye - vWorld));
+  // Haze on the squared distance: no square root per pixel.
+  vec3 d = uEye - vWorld;
+  float haze = clamp((dot(d, d) - uFogStart2) * uFogScale2, 0.0, 1.0);
   fragColour = vec4(mix(colour, uHaze, haze), uAlpha);
 }
 )";
@@ -631,21 +637,23 @@ void Renderer::Impl::render(const Scene& scene, const Camera& camera, Image& out
   // Ground after the objects standing on it: the depth test then skips its hidden pixels.
   setCommon(ground);
   glUniform1f(ground.at("uAlpha"), 0.0f);
-  glUniform1f(ground.at("uGridSpacing"), static_cast<float>(settings.gridSpacing));
+  glUniform1f(ground.at("uFogStart2"), static_cast<float>(fogStart * fogStart));
+  glUniform1f(ground.at("uFogScale2"), static_cast<float>(1.0 / (fogEnd * fogEnd - fogStart * fogStart)));
   for (const Draw& draw : draws) {
     if (draw.material != Material::Ground) continue;
     const Vec3& n = draw.groundNormal;
     Eigen::Index axis = 0;
     n.cwiseAbs().minCoeff(&axis);
-    const Eigen::Vector3f u = n.cross(Vec3::Unit(axis)).normalized().cast<float>();
-    const Eigen::Vector3f v = n.cross(u.cast<double>()).normalized().cast<float>();
+    const Vec3 u = n.cross(Vec3::Unit(axis)).normalized();
+    const Eigen::Vector3f uCells = (u / settings.gridSpacing).cast<float>();
+    const Eigen::Vector3f vCells = (n.cross(u).normalized() / settings.gridSpacing).cast<float>();
     const Eigen::Vector3f base = linear(draw.colour);
     const Vec3 ambient = kBounceAmbient + (kSkyAmbient - kBounceAmbient) * (0.5 + 0.5 * n.y());
     const Vec3 direct = kSun * std::max(n.dot(toLight), 0.0);
     const Eigen::Vector3f unlit = base.cwiseProduct(ambient.cast<float>());
     const Eigen::Vector3f lit = base.cwiseProduct((ambient + direct).cast<float>());
-    glUniform3fv(ground.at("uAxisU"), 1, u.data());
-    glUniform3fv(ground.at("uAxisV"), 1, v.data());
+    glUniform3fv(ground.at("uAxisU"), 1, uCells.data());
+    glUniform3fv(ground.at("uAxisV"), 1, vCells.data());
     const Eigen::Vector3f litDisplay = lit.cwiseSqrt(), unlitDisplay = unlit.cwiseSqrt();
     glUniform3fv(ground.at("uLit"), 1, litDisplay.data());
     glUniform3fv(ground.at("uUnlit"), 1, unlitDisplay.data());

@@ -24,7 +24,10 @@ struct RenderSettings {
   bool postAntiAliasing = true;
   int samples = 1;              // MSAA samples per pixel: 1 (off), 2, 4 or 8
   bool shadows = true;
-  int shadowMapSize = 2048;     // texels per side, 256..8192
+  // Texels per side, 256..8192. The light frustum is fitted to the scene each frame, so 1024 gives
+  // crisp shadows for scenes a few metres across; 2048 cost 4-12 ms more per 1280x720 frame in our
+  // llvmpipe measurements on two cores.
+  int shadowMapSize = 1024;
   // Direction the light travels (from the light towards the scene); any non-zero length.
   Vec3 lightDirection{1.0, -1.2, -0.55};
   // A grid-covered ground is drawn under the scene (at its lowest point) when the scene has no

@@ -17,7 +17,7 @@ struct TubeOptions {
   bool capEnds = true;         // flat discs closing both ends
   Rgb colour{0.89f, 0.56f, 0.22f};           // sRGB, every channel in [0, 1]
   bool alternateSpanColours = false;          // odd spans (in order along the curve) use...
-  Rgb alternateColour{0.22f, 0.47f, 0.80f};  // ...this colour
+  Rgb alternateColour{0.95f, 0.93f, 0.87f};  // ...this colour (off-white: a striped rope)
 };
 
 // Vertex layout (the tests rely on it): for each non-empty knot span in order, samplesPerSpan + 1

@@ -30,32 +30,30 @@ bool isExecutableFile(const std::string& path) {
 
 // Writes all bytes, with SIGPIPE blocked for this thread so that a dead ffmpeg turns into EPIPE
 // (an error we report) instead of killing the whole program; a SIGPIPE raised meanwhile is
-// consumed before the mask is restored.
-bool writeAll(int fd, const std::uint8_t* data, std::size_t size) {
+// consumed before the mask is restored. Returns 0 or the errno of the failed write.
+int writeAll(int fd, const std::uint8_t* data, std::size_t size) {
   sigset_t pipeSignal, previous;
   sigemptyset(&pipeSignal);
   sigaddset(&pipeSignal, SIGPIPE);
   pthread_sigmask(SIG_BLOCK, &pipeSignal, &previous);
-  bool ok = true;
-  bool brokenPipe = false;
+  int error = 0;
   while (size > 0) {
     const ssize_t written = ::write(fd, data, size);
     if (written < 0) {
       if (errno == EINTR) continue;
-      brokenPipe = errno == EPIPE;
-      ok = false;
+      error = errno;
       break;
     }
     data += written;
     size -= static_cast<std::size_t>(written);
   }
-  if (brokenPipe) {
+  if (error == EPIPE) {
     const timespec zero{0, 0};
     while (sigtimedwait(&pipeSignal, nullptr, &zero) > 0) {
     }
   }
   pthread_sigmask(SIG_SETMASK, &previous, nullptr);
-  return ok;
+  return error;
 }
 
 std::string describeStatus(int status) {
@@ -169,9 +167,8 @@ void VideoWriter::addFrame(const Image& image) {
                           "must match the video size " + std::to_string(settings_.width) + "x" +
                               std::to_string(settings_.height));
   }
-  if (!writeAll(pipe_, image.pixels.data(), image.pixels.size())) {
-    const int savedErrno = errno;
-    std::string reason = std::strerror(savedErrno);
+  if (const int error = writeAll(pipe_, image.pixels.data(), image.pixels.size()); error != 0) {
+    const std::string reason = std::strerror(error);
     close();  // throws with ffmpeg's own message if it failed
     throw std::runtime_error("VideoWriter: writing a frame to ffmpeg failed: " + reason);
   }

@@ -9,7 +9,7 @@ namespace {
 std::array<float, 3> toFloat(const Vec3& v) {
   return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
 }
-Vec3 toDouble(const std::array<float, 3>& v) { return Vec3(v[0], v[1], v[2]); }
+Vec3 asVec3(const std::array<float, 3>& v) { return Vec3(v[0], v[1], v[2]); }
 }  // namespace
 
 std::uint32_t Mesh::addVertex(const Vec3& position, const Vec3& normal, const Rgb& colour) {
@@ -33,8 +33,8 @@ void Mesh::append(const Mesh& other, const Eigen::Isometry3d& transform) {
   const Eigen::Matrix3d rotation = transform.linear();
   for (const Vertex& v : other.vertices) {
     Vertex moved = v;
-    moved.position = toFloat(transform * toDouble(v.position));
-    moved.normal = toFloat(rotation * toDouble(v.normal));
+    moved.position = toFloat(transform * asVec3(v.position));
+    moved.normal = toFloat(rotation * asVec3(v.normal));
     vertices.push_back(moved);
   }
   indices.reserve(indices.size() + other.indices.size());
@@ -43,7 +43,7 @@ void Mesh::append(const Mesh& other, const Eigen::Isometry3d& transform) {
 
 BoundingBox meshBounds(const Mesh& mesh, const Eigen::Isometry3d& transform) {
   BoundingBox box;
-  for (const Vertex& v : mesh.vertices) box.extend(transform * toDouble(v.position));
+  for (const Vertex& v : mesh.vertices) box.extend(transform * asVec3(v.position));
   return box;
 }
 

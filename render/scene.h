@@ -14,7 +14,8 @@ namespace rope::render {
 
 enum class Material {
   Surface,  // lit, shadowed, casts shadows
-  Ground,   // lit and shadowed with the ground grid drawn on it; casts no shadow
+  Ground,   // flat mesh (one normal, read from its first vertex): lit, shadowed, with the ground grid
+            // drawn on it; casts no shadow
   Overlay,  // annotation (control polygon): lightly shaded, no shadows, visible through surfaces
 };
 

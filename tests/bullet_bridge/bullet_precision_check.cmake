@@ -14,7 +14,7 @@ endforeach()
 
 function(try_link name flags result_var output_var)
   execute_process(
-    COMMAND "${CXX}" -std=c++17 ${flags} ${include_flags} "${SOURCE}" "${LIBRARY}"
+    COMMAND "${CXX}" -std=c++17 ${flags} ${LINK_FLAGS} ${include_flags} "${SOURCE}" "${LIBRARY}"
             -o "${WORK_DIR}/${name}"
     RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
   set(${result_var} "${result}" PARENT_SCOPE)

@@ -12,7 +12,15 @@
 //   shapeError  — max distance between the control points of the original curve and those of the
 //                 candidate with the knot re-inserted; by the convex-hull property this bounds the
 //                 largest displacement of the curve, max_s |C_new(s) - C_old(s)|.
-//   lengthError — |L_new - L_old| of the arc length over the spans the removal touches.
+//   lengthError — |L_new - L_old| of the arc length over the spans the removal touches, integrated
+//                 over [s_{k-d}, s_{k+d+2}] of the knots before removal (clipped to the valid range),
+//                 which holds the supports of every basis function whose coefficient the sweeps
+//                 read or write; outside it the curves are identical, so this is the whole change.
+//                 Same quadrature as arcLength() with default options.
+// In floating point a sweep divides by a_i (left) or 1 - a_i (right): when the knot is removable
+// the stable side reproduces the curve to rounding and the other may show amplified rounding in
+// its errors; the smaller length error then picks the stable side (checked on 1000 random
+// insert-then-remove cases in the tests, not proven).
 
 #include <array>
 #include <vector>

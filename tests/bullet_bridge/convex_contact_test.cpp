@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -257,6 +258,34 @@ TEST(ConvexContact, SpeculativeContactsReportTheExactGapUpToTheMargin) {
     EXPECT_NEAR(contacts[0].distance, gap, 1e-12);
   }
   EXPECT_TRUE(contactsWith(sphere, {-0.3, 0.7000001, 0}, {0.3, 0.7000001, 0}, 0.1, margin).empty());
+}
+
+TEST(ConvexContact, BoxAndTheHullOfItsCornersAgreeOnRandomCapsules) {
+  // Two descriptions of one solid: a btBoxShape (sharp, true extents) and the hull of its corners
+  // with zero margin, under the same rotated placement.
+  const btVector3 half(0.6, 0.25, 0.4);
+  btBoxShape box(half);
+  btConvexHullShape hull;
+  for (int corner = 0; corner < 8; ++corner) {
+    hull.addPoint(btVector3(corner & 1 ? half.x() : -half.x(), corner & 2 ? half.y() : -half.y(),
+                            corner & 4 ? half.z() : -half.z()),
+                  false);
+  }
+  hull.recalcLocalAabb();
+  hull.setMargin(0);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  int compared = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const btVector3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng));
+    const auto fromBox = contactsWith(box, a, b, 0.05, 0.3);
+    const auto fromHull = contactsWith(hull, a, b, 0.05, 0.3);
+    ASSERT_EQ(fromBox.size(), fromHull.size()) << "trial " << trial;
+    if (fromBox.empty() || fromBox[0].distance < -0.05) continue;  // deep: MPR estimates
+    EXPECT_NEAR(fromBox[0].distance, fromHull[0].distance, 1e-12) << "trial " << trial;
+    ++compared;
+  }
+  EXPECT_GT(compared, 50);
 }
 
 TEST(ConvexContact, CoreDescriptionsFollowBulletConventions) {

@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "bullet_bridge/segment_triangle_distance.h"
 #include "narrowphase_test_support.h"
 
 namespace rope::bullet {
@@ -169,6 +171,72 @@ TEST(SegmentConvexDistance, BoxMatchesAReferenceMinimisationOnRandomSegments) {
     }
   }
   EXPECT_GT(separated, 100);
+}
+
+// Reference minimum of a convex function of s in [0, 1] by ternary search.
+template <typename F>
+double minimiseOverSegment(F f) {
+  double lo = 0, hi = 1;
+  for (int i = 0; i < 200; ++i) {
+    const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+    if (f(m1) < f(m2)) hi = m2; else lo = m1;
+  }
+  return std::min({f(0.0), f(1.0), f((lo + hi) / 2)});
+}
+
+TEST(SegmentConvexDistance, CylinderMatchesAReferenceMinimisationOnRandomSegments) {
+  // Point-to-cylinder distance in closed form (radial and axial excess), convex along a segment.
+  const btScalar radius = 0.4, halfHeight = 0.7;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  for (int axis = 0; axis < 3; ++axis) {
+    const ConvexCore core = cylinder(axis, radius, halfHeight);
+    auto pointDistance = [&](const btVector3& x) {
+      btVector3 radial = x;
+      radial[axis] = 0;
+      const double dr = std::max(0.0, double(radial.length()) - radius);
+      const double da = std::max(0.0, std::fabs(double(x[axis])) - halfHeight);
+      return std::sqrt(dr * dr + da * da);
+    };
+    int separated = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+      const btVector3 p(u(rng), u(rng), u(rng)), q(u(rng), u(rng), u(rng));
+      const double reference =
+          minimiseOverSegment([&](double s) { return pointDistance(p + (q - p) * s); });
+      const auto r = segmentConvexDistance(p, q, core, kBig);
+      if (reference > 1e-6) {
+        ASSERT_EQ(r.status, Status::Separated) << "axis " << axis << " trial " << trial;
+        ASSERT_NEAR(r.distance, reference, 1e-9) << "axis " << axis << " trial " << trial;
+        ASSERT_NEAR(pointDistance(r.pointOnSegment), r.distance, 1e-9);
+        ++separated;
+      } else if (reference == 0) {
+        ASSERT_EQ(r.status, Status::Intersecting) << "axis " << axis << " trial " << trial;
+      }
+    }
+    EXPECT_GT(separated, 50);
+  }
+}
+
+TEST(SegmentConvexDistance, SegmentCoreMatchesClosedFormOnRandomSegments) {
+  ConvexCore core;
+  core.kind = ConvexCore::Kind::Segment;
+  core.upAxis = 1;
+  core.halfHeight = 0.6;
+  core.size = 0.6;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const btVector3 p(u(rng), u(rng), u(rng)), q(u(rng), u(rng), u(rng));
+    const btVector3 c0(0, -0.6, 0), c1(0, 0.6, 0);
+    btScalar s, t;
+    closestSegmentSegment(p, q, c0, c1, s, t);
+    const double reference = ((p + (q - p) * s) - (c0 + (c1 - c0) * t)).length();
+    const auto r = segmentConvexDistance(p, q, core, kBig);
+    if (reference > 1e-9) {
+      ASSERT_EQ(r.status, Status::Separated) << "trial " << trial;
+      ASSERT_NEAR(r.distance, reference, 1e-12) << "trial " << trial;
+    }
+  }
 }
 
 }  // namespace

@@ -93,7 +93,7 @@ int mergeStraightCorners(KnotVector& knots, PointList& points, const MergeLimits
                          std::vector<MergeRecord>& records) {
   const int d = knots.degree();
   int merges = 0;
-  std::vector<double> rejected;  // knot values whose merge the guard refused in this call
+  std::vector<double> rejected;  // knot values whose merge the limits refused in this call
   PointList candidate;
   while (static_cast<int>(points.size()) > limits.minControlPoints) {
     const int n = static_cast<int>(points.size());

@@ -7,10 +7,13 @@ double bendingEnergy(const RodIntegrals& integrals, const PointList& q) {
   const int local = integrals.degree() + 1;
   for (int j = 0; j < integrals.spanCount(); ++j) {
     const SpanView span = integrals.span(j);
+    // K_b annihilates translations (sum_b K_ab = 0), so measuring from a local origin gives the same
+    // value without the cancellation of large absolute coordinates.
+    const Vec3 origin = q[static_cast<size_t>(j)];
     for (int a = 0; a < local; ++a)
       for (int b = 0; b < local; ++b)
         energy += 0.5 * span.bending[a * local + b] *
-                  q[static_cast<size_t>(j + a)].dot(q[static_cast<size_t>(j + b)]);
+                  (q[static_cast<size_t>(j + a)] - origin).dot(q[static_cast<size_t>(j + b)] - origin);
   }
   return energy;
 }
@@ -20,9 +23,10 @@ void bendingForces(const RodIntegrals& integrals, const PointList& q, PointList&
   const int local = integrals.degree() + 1;
   for (int j = 0; j < integrals.spanCount(); ++j) {
     const SpanView span = integrals.span(j);
+    const Vec3 origin = q[static_cast<size_t>(j)];
     for (int a = 0; a < local; ++a)
       for (int b = 0; b < local; ++b)
-        forces[static_cast<size_t>(j + a)] -= span.bending[a * local + b] * q[static_cast<size_t>(j + b)];
+        forces[static_cast<size_t>(j + a)] -= span.bending[a * local + b] * (q[static_cast<size_t>(j + b)] - origin);
   }
 }
 

@@ -65,7 +65,7 @@ Rod::Rod(const RodSettings& settings, KnotVector knots, PointList points, PointL
       velocities_(std::move(velocities)),
       rest_(std::move(rest)) {
   integrals_.build(knots_, rest_, settings_.effectiveLinearDensity(), settings_.effectiveBendingStiffness(),
-                   gaussCount);
+                   gaussCount, settings_.stretchingQuadrature);
 }
 
 Rod Rod::fromSegment(const RodSettings& settings, const Vec3& a, const Vec3& b) {
@@ -330,7 +330,7 @@ bool Rod::assembleAndSolve(double h, StepReport& report) {
     stretchingSpan(span, q, axial, StiffnessMode::kClamped, f, blocks);
     for (int a = 0; a < local; ++a) {
       Vec3 fa = span.gravity[a] * gravity;
-      for (int b = 0; b < local; ++b) fa -= span.bending[a * local + b] * q[b];
+      for (int b = 0; b < local; ++b) fa -= span.bending[a * local + b] * (q[b] - q[0]);  // see bending_energy.cpp
       f[a] += fa;
     }
     for (int a = 0; a < local; ++a) {

@@ -93,6 +93,12 @@ void Rod::adapt(StepReport& report) {
     const double t = knots_[r];
     if (!(t > beginParameter() && t < endParameter())) continue;
     if (knots_.multiplicity(t) != 1 || isInteractionKnot(t)) continue;
+    // Removal moves the curve on the support of the changed control points, (s_{r-d}, s_{r+d}): keep
+    // pinned points exactly where the constraint put them.
+    bool pinned = false;
+    for (const Pin& p : pins_)
+      pinned = pinned || (p.parameter > knots_[std::max(0, r - d)] && p.parameter < knots_[std::min(knots_.size() - 1, r + d)]);
+    if (pinned) continue;
     bool straight = true;
     for (int i = std::max(1, r - d - 1); i <= std::min(n - 2, r); ++i)
       straight = straight && bend_[static_cast<size_t>(i)] < removeThreshold;

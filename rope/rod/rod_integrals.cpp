@@ -13,8 +13,8 @@ namespace rope {
 namespace {
 // Offsets inside one span record.
 struct Layout {
-  int local, gauss;
-  int dBasis() const { return 1; }
+  int local, gauss;  // gauss: stretching slots per span
+  int dBasis() const { return 2; }
   int w0() const { return dBasis() + gauss * local; }
   int w1() const { return w0() + gauss; }
   int w3() const { return w1() + gauss; }
@@ -31,12 +31,15 @@ int RodIntegrals::exactGaussCount(int degree) {
 }
 
 void RodIntegrals::build(const KnotVector& knots, const PointList& restPoints, double linearDensity,
-                         double bendingStiffness, int gaussCount) {
+                         double bendingStiffness, int gaussCount, StretchingQuadrature stretching) {
   degree_ = knots.degree();
   gaussCount_ = gaussCount;
+  stretching_ = stretching;
+  // The locking-free rule uses at most d points in a span (a rod with a single span).
+  stretchSlots_ = stretching == StretchingQuadrature::kExact ? gaussCount : degree_;
   linearDensity_ = linearDensity;
   bendingStiffness_ = bendingStiffness;
-  const Layout layout{degree_ + 1, gaussCount_};
+  const Layout layout{degree_ + 1, stretchSlots_};
   stride_ = layout.stride();
   spanCount_ = knots.controlPointCount() - degree_;
   data_.assign(static_cast<size_t>(spanCount_) * static_cast<size_t>(stride_), 0.0);
@@ -46,7 +49,7 @@ void RodIntegrals::build(const KnotVector& knots, const PointList& restPoints, d
 void RodIntegrals::computeSpan(const KnotVector& knots, const PointList& restPoints, int j) {
   const int d = degree_;
   const int local = d + 1;
-  const Layout layout{local, gaussCount_};
+  const Layout layout{local, stretchSlots_};
   double* record = spanData(j);
   std::fill(record, record + stride_, 0.0);
   const int k = d + j;
@@ -55,42 +58,58 @@ void RodIntegrals::computeSpan(const KnotVector& knots, const PointList& restPoi
   if (!(s1 > s0)) return;  // empty span: no contribution
   const double half = 0.5 * (s1 - s0);
   const double mid = 0.5 * (s0 + s1);
-  const GaussRule rule = gaussLegendre(gaussCount_);
   BasisValues basis;
-  double restLength = 0.0;
-  for (int g = 0; g < gaussCount_; ++g) {
-    const double s = mid + half * rule.nodes[g];
+  // l0'(s) = |C0'(s)| from the rest curve.
+  auto restSpeed = [&](double s) {
     evaluateBasis(knots, k, s, 2, basis);
     Vec3 restTangent = Vec3::Zero();
-    for (int a = 0; a < local; ++a) restTangent += basis.d[1][static_cast<size_t>(a)] * restPoints[static_cast<size_t>(j + a)];
-    const double l0 = restTangent.norm();  // l0'(s)
+    for (int a = 0; a < local; ++a)
+      restTangent += basis.d[1][static_cast<size_t>(a)] * restPoints[static_cast<size_t>(j + a)];
+    const double l0 = restTangent.norm();
     if (!std::isfinite(l0) || l0 <= 0.0) {
       throw InvalidArgument("restPoints", "span " + std::to_string(j),
                             "rest curve must be regular (|C0'(s)| > 0)");
     }
-    const double wj = rule.weights[g] * half;
-    const double w0 = wj * l0;
-    const double w1 = wj / l0;
-    const double w3 = w1 / (l0 * l0);
+    return l0;
+  };
+
+  // Mass ([A] eq. 10, linear density per rest length), gravity weights, bending and rest length.
+  const GaussRule rule = gaussLegendre(gaussCount_);
+  double restLength = 0.0;
+  for (int g = 0; g < gaussCount_; ++g) {
+    const double l0 = restSpeed(mid + half * rule.nodes[g]);
+    const double w0 = rule.weights[g] * half * l0;
+    const double w3 = rule.weights[g] * half / (l0 * l0 * l0);
     restLength += w0;
-    record[layout.w0() + g] = w0;
-    record[layout.w1() + g] = w1;
-    record[layout.w3() + g] = w3;
-    double* db = record + layout.dBasis() + g * local;
-    for (int a = 0; a < local; ++a) db[a] = basis.d[1][static_cast<size_t>(a)];
-    // [A] eq. 10 with a linear density per rest length; gravity weights likewise.
     for (int a = 0; a < local; ++a) {
       const double ba = basis.d[0][static_cast<size_t>(a)];
       const double ca = basis.d[2][static_cast<size_t>(a)];
       record[layout.gravity() + a] += linearDensity_ * w0 * ba;
       for (int b = 0; b < local; ++b) {
         record[layout.mass() + a * local + b] += linearDensity_ * w0 * ba * basis.d[0][static_cast<size_t>(b)];
-        record[layout.bending() + a * local + b] +=
-            bendingStiffness_ * w3 * ca * basis.d[2][static_cast<size_t>(b)];
+        record[layout.bending() + a * local + b] += bendingStiffness_ * w3 * ca * basis.d[2][static_cast<size_t>(b)];
       }
     }
   }
   record[0] = restLength;
+
+  // Stretching points (see StretchingQuadrature in rod_settings.h).
+  int count = gaussCount_;
+  if (stretching_ == StretchingQuadrature::kLockingFree) {
+    const int extra = d - 1;
+    count = 1 + (j == 0 ? extra / 2 : 0) + (j == spanCount_ - 1 ? extra - extra / 2 : 0);
+  }
+  const GaussRule stretchRule = gaussLegendre(count);
+  for (int g = 0; g < count; ++g) {
+    const double l0 = restSpeed(mid + half * stretchRule.nodes[g]);
+    const double wj = stretchRule.weights[g] * half;
+    record[layout.w0() + g] = wj * l0;
+    record[layout.w1() + g] = wj / l0;
+    record[layout.w3() + g] = wj / (l0 * l0 * l0);
+    double* db = record + layout.dBasis() + g * local;
+    for (int a = 0; a < local; ++a) db[a] = basis.d[1][static_cast<size_t>(a)];
+  }
+  record[1] = count;
 }
 
 void RodIntegrals::recomputeRange(const KnotVector& knots, const PointList& restPoints, int firstSpanK,
@@ -124,11 +143,11 @@ void RodIntegrals::afterRemoval(const KnotRemoval& plan, const KnotVector& knots
 }
 
 SpanView RodIntegrals::span(int j) const {
-  const Layout layout{degree_ + 1, gaussCount_};
+  const Layout layout{degree_ + 1, stretchSlots_};
   const double* record = spanData(j);
   SpanView view;
   view.localCount = degree_ + 1;
-  view.gaussCount = gaussCount_;
+  view.gaussCount = static_cast<int>(record[1]);
   view.restLength = record[0];
   view.dBasis = record + layout.dBasis();
   view.w0 = record + layout.w0();

@@ -6,7 +6,7 @@
 // state, so the material (mass, rest length, stiffness distribution) is a property of s alone and never
 // of the resolution ([A] §3.2, spec §2 "Rest metric").
 //
-// Per span and Gauss–Legendre point g (weight w_g, Jacobian J = span length / 2) we store
+// Per span and stretching quadrature point g (weight w_g, Jacobian J = span length / 2) we store
 //   b'_a(s_g) for the d+1 non-zero basis functions, W1_g = w_g J / l0'(s_g), W3_g = w_g J / l0'(s_g)^3.
 // These are the spec's stretching integrals in factored form:
 //   B_im   = sum_g W1_g b'_i b'_m,    B_impq = sum_g W3_g b'_i b'_m b'_p b'_q,
@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "rope/common/types.h"
+#include "rope/rod/rod_settings.h"
 #include "rope/spline/knot_insertion.h"
 #include "rope/spline/knot_removal.h"
 #include "rope/spline/knot_vector.h"
@@ -30,7 +31,7 @@ namespace rope {
 // Span j (knot span k = d + j) carries the basis functions b_j .. b_{j+d}.
 struct SpanView {
   int localCount = 0;          // d + 1
-  int gaussCount = 0;          // G (0 for an empty span)
+  int gaussCount = 0;          // stretching points in this span (0 for an empty span)
   double restLength = 0.0;     // m
   const double* dBasis = nullptr;   // [g * localCount + a] = b'_a(s_g)
   const double* w0 = nullptr;       // [g] = w_g J l0'      (sums to the rest length)
@@ -47,10 +48,13 @@ class RodIntegrals {
   static int exactGaussCount(int degree);
 
   RodIntegrals() = default;
-  // Computes every span. restPoints must match knots; linearDensity kg/m, bendingStiffness N m^2.
-  // Throws InvalidArgument("restPoints", ...) if the rest curve is not regular (l0' <= 0 somewhere).
+  // Computes every span. restPoints must match knots; linearDensity kg/m, bendingStiffness N m^2;
+  // gaussCount points per span (exact for every integrand when l0' is constant: see exactGaussCount);
+  // the stretching points follow `stretching` (see rod_settings.h). Throws InvalidArgument("restPoints", ...) if the rest curve is not regular
+  // (l0' <= 0 somewhere).
   void build(const KnotVector& knots, const PointList& restPoints, double linearDensity,
-             double bendingStiffness, int gaussCount);
+             double bendingStiffness, int gaussCount,
+             StretchingQuadrature stretching = StretchingQuadrature::kExact);
   // After insertion (knots/restPoints already updated with plan): O(d) spans recomputed.
   void afterInsertion(const KnotInsertion& plan, const KnotVector& knots, const PointList& restPoints);
   // After removal of the knot at plan.knotIndex (old numbering): O(d) spans recomputed.
@@ -58,6 +62,7 @@ class RodIntegrals {
 
   int degree() const { return degree_; }
   int gaussCount() const { return gaussCount_; }
+  StretchingQuadrature stretchingQuadrature() const { return stretching_; }
   int spanCount() const { return spanCount_; }
   // Span j is the knot span k = degree + j.
   SpanView span(int j) const;
@@ -78,6 +83,8 @@ class RodIntegrals {
 
   int degree_ = 3;
   int gaussCount_ = 0;
+  int stretchSlots_ = 0;  // stretching points reserved per span
+  StretchingQuadrature stretching_ = StretchingQuadrature::kExact;
   int spanCount_ = 0;
   int stride_ = 0;
   double linearDensity_ = 0.0;

@@ -6,6 +6,9 @@
 // In the factored form of rod_integrals.h, at each Gauss point with t = W3 |C'|^2 - W1
 // (= w J (gamma^2 - 1) / l0'), the point contributes F_a = -(EA/2) t b'_a C' and
 // K_ab = b'_a b'_b [(EA/2) t I + EA W3 C' C'^T].
+// The kernel works on whatever points the integrals hold: the exact rule (spec §2) or the
+// locking-free reduced rule (StretchingQuadrature in rod_settings.h); force and stiffness are always
+// the exact derivatives of the energy as sampled.
 // Under compression (t < 0) the first term makes K indefinite; the Gauss–Newton clamp replaces t by
 // max(t, 0) there (spec §2: "drop the negative part"), which leaves K positive semidefinite, so that
 // M + hD + h^2 K stays positive definite. The exact Hessian is kept for tests and diagnostics.

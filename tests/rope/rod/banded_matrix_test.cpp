@@ -1,0 +1,120 @@
+#include "rope/rod/banded_matrix.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+namespace rope {
+namespace {
+
+// A random symmetric positive definite block-banded matrix, filled through the public interface, and
+// the same matrix densely (the test's reference; dense only here).
+Eigen::MatrixXd randomBanded(int blocks, int blockSize, int bandwidth, unsigned seed,
+                             SymmetricBandedMatrix& banded) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  banded.reset(blocks, blockSize, bandwidth);
+  const int n = blocks * blockSize;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  const int w = banded.halfBandwidth();
+  for (int r = 0; r < n; ++r) {
+    for (int c = std::max(0, r - w); c < r; ++c) {
+      const double value = uniform(rng);
+      banded.at(r, c) = value;
+      dense(r, c) = dense(c, r) = value;
+    }
+  }
+  for (int r = 0; r < n; ++r) {
+    const double value = 2.0 * w + 1.0 + uniform(rng);  // diagonally dominant
+    banded.at(r, r) = value;
+    dense(r, r) = value;
+  }
+  return dense;
+}
+
+TEST(SymmetricBandedMatrix, BandwidthFollowsBlocks) {
+  SymmetricBandedMatrix m;
+  m.reset(10, 3, 3);
+  EXPECT_EQ(m.size(), 30);
+  EXPECT_EQ(m.halfBandwidth(), 11);
+  m.reset(10, 1, 3);
+  EXPECT_EQ(m.halfBandwidth(), 3);
+}
+
+TEST(SymmetricBandedMatrix, MultiplyMatchesDense) {
+  for (int blockSize : {1, 3}) {
+    SymmetricBandedMatrix banded;
+    const Eigen::MatrixXd dense = randomBanded(17, blockSize, 3, 11u + static_cast<unsigned>(blockSize), banded);
+    const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(dense.rows(), -1.0, 2.0);
+    Eigen::VectorXd y(dense.rows());
+    banded.multiply(x.data(), y.data());
+    EXPECT_LT((y - dense * x).norm(), 1e-12 * (dense * x).norm());
+    for (int r = 0; r < dense.rows(); ++r)
+      for (int c = 0; c < dense.cols(); ++c) EXPECT_EQ(banded.entry(r, c), dense(r, c));
+  }
+}
+
+TEST(SymmetricBandedMatrix, SolveMatchesDense) {
+  for (int bandwidth : {1, 2, 3, 5}) {
+    SymmetricBandedMatrix banded;
+    const Eigen::MatrixXd dense = randomBanded(23, 3, bandwidth, 5u + static_cast<unsigned>(bandwidth), banded);
+    Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(dense.rows(), 1.0, -3.0);
+    const Eigen::VectorXd expected = dense.ldlt().solve(b);
+    ASSERT_TRUE(banded.factorize());
+    EXPECT_TRUE(banded.factorized());
+    banded.solve(b.data());
+    EXPECT_LT((b - expected).norm(), 1e-12 * expected.norm()) << "bandwidth " << bandwidth;
+  }
+}
+
+TEST(SymmetricBandedMatrix, ForwardSubstitutionSkipsLeadingZeros) {
+  SymmetricBandedMatrix banded;
+  const Eigen::MatrixXd dense = randomBanded(12, 3, 3, 77u, banded);
+  ASSERT_TRUE(banded.factorize());
+  const Eigen::MatrixXd L = dense.llt().matrixL();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(dense.rows());
+  x(20) = 1.0;
+  x(23) = -0.5;
+  const Eigen::VectorXd expected = L.triangularView<Eigen::Lower>().solve(x);
+  banded.forwardSubstitute(x.data(), 20);
+  EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm());
+}
+
+TEST(SymmetricBandedMatrix, BlocksAddSymmetrically) {
+  SymmetricBandedMatrix m;
+  m.reset(4, 3, 1);
+  Eigen::Matrix3d block;
+  block << 1, 2, 3, 4, 5, 6, 7, 8, 9;
+  m.addBlock(2, 1, block);
+  EXPECT_EQ(m.entry(6, 3), 1.0);
+  EXPECT_EQ(m.entry(3, 6), 1.0);
+  EXPECT_EQ(m.entry(7, 5), 6.0);
+  m.addScaledIdentity(3, 3, 2.5);
+  EXPECT_EQ(m.entry(10, 10), 2.5);
+  EXPECT_EQ(m.entry(10, 9), 0.0);
+  EXPECT_EQ(m.entry(11, 0), 0.0);  // outside the band
+}
+
+TEST(SymmetricBandedMatrix, IndefiniteMatrixReportsFailureWithoutNaN) {
+  SymmetricBandedMatrix m;
+  m.reset(5, 1, 1);
+  for (int i = 0; i < 5; ++i) m.at(i, i) = 1.0;
+  m.at(3, 2) = 2.0;  // [[1,2],[2,1]] block: indefinite
+  EXPECT_FALSE(m.factorize());
+  EXPECT_FALSE(m.factorized());
+  SymmetricBandedMatrix zero;
+  zero.reset(3, 3, 1);
+  EXPECT_FALSE(zero.factorize());
+}
+
+TEST(SymmetricBandedMatrix, ResetClearsAndReusesStorage) {
+  SymmetricBandedMatrix banded;
+  randomBanded(30, 3, 3, 3u, banded);
+  banded.reset(4, 3, 3);
+  for (int r = 0; r < banded.size(); ++r)
+    for (int c = 0; c < banded.size(); ++c) EXPECT_EQ(banded.entry(r, c), 0.0);
+}
+
+}  // namespace
+}  // namespace rope

@@ -1,0 +1,140 @@
+// Adaptivity after each step ([A] §4, spec §3).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "rope/rod/adaptivity.h"
+#include "rope/rod/rod.h"
+#include "rope/spline/knot_removal.h"
+#include "tests/rope/rod/rod_test_util.h"
+
+namespace rope {
+namespace {
+
+TEST(Adaptivity, CurvatureInsertionSpansFollowTheBentCorners) {
+  const KnotVector knots = KnotVector::clampedUniform(3, 8, 0.0, 5.0);
+  PointList points;
+  for (int i = 0; i < 8; ++i) points.emplace_back(i, 0, 0);
+  points[4] = Vec3(4, 1.5, 0);  // one sharp corner
+  std::vector<double> bend;
+  bendMeasures(points, bend);
+  EXPECT_EQ(bend[0], 0.0);
+  EXPECT_GT(bend[4], 0.5);
+  EXPECT_EQ(bend[1], 0.0);
+  std::vector<int> spans;
+  curvatureInsertionSpans(knots, bend, 0.117, spans);
+  // The sides q2q3, q3q4, q4q5, q5q6 touch bent corners; their middles lie in spans around the
+  // Greville abscissae of q3..q5.
+  ASSERT_FALSE(spans.empty());
+  for (int k : spans) {
+    EXPECT_GE(knots[k + 1], grevilleAbscissa(knots, 2));
+    EXPECT_LE(knots[k], grevilleAbscissa(knots, 6));
+  }
+  EXPECT_TRUE(std::is_sorted(spans.begin(), spans.end()));
+}
+
+TEST(Adaptivity, LocalRemovalErrorIsZeroForARedundantKnot) {
+  KnotVector knots = KnotVector::clampedUniform(3, 9, 0.0, 1.0);
+  PointList points;
+  for (int i = 0; i < 9; ++i) points.emplace_back(std::cos(0.3 * i), std::sin(0.3 * i), 0.1 * i);
+  const double s = 0.4321;
+  insertKnot(knots, points, s);
+  const KnotRemoval plan = planKnotRemoval(knots, points, s);
+  EXPECT_LT(localRemoval(plan, points).error, 1e-13);
+  points[6] += Vec3(0.1, 0, 0);  // now the knot is needed
+  const KnotRemoval needed = planKnotRemoval(knots, points, s);
+  EXPECT_GT(localRemoval(needed, points).error, 1e-3);
+  EXPECT_NEAR(localRemoval(needed, points).error, needed.chosenShapeError(), 1e-12);
+}
+
+// A rope draped over a peg (pinned at its middle) folds tightly there: it must gain control points
+// only near the fold; once it hangs straight from one end it loses them again.
+TEST(Adaptivity, TightFoldGainsPointsOnlyNearTheFoldAndLosesThemWhenStraight) {
+  RodSettings settings;
+  settings.restLength = 1.0;
+  settings.linearDensity = 0.05;
+  settings.youngsModulus = 1e8;
+  settings.radius = 0.002;
+  settings.bendingStiffness = 1e-4;  // fold radius ~ sqrt(EI / T) ~ a few cm
+  settings.massDamping = 3.0;
+  settings.initialControlPoints = 12;
+  settings.minControlPoints = 8;
+  settings.maxControlPoints = 40;
+  Rod rod = Rod::fromSegment(settings, Vec3(-0.5, 0, 0), Vec3(0.5, 0, 0));
+  const std::vector<double> initialKnots = rod.knots().values();
+  const int peg = rod.pin(0.5);
+  int maxCount = 0, insertions = 0;
+  for (int i = 0; i < 240 * 6; ++i) {
+    const StepReport report = rod.step(1.0 / 240);
+    ASSERT_TRUE(report.ok) << report.failure;
+    EXPECT_GE(report.controlPoints, settings.minControlPoints);
+    EXPECT_LE(report.controlPoints, settings.maxControlPoints);
+    maxCount = std::max(maxCount, report.controlPoints);
+    insertions += report.insertions;
+  }
+  // Folded: both halves hang down.
+  EXPECT_LT(rod.position(0.0).y(), -0.4);
+  EXPECT_LT(rod.position(1.0).y(), -0.4);
+  const int foldedCount = rod.controlPointCount();
+  EXPECT_GT(foldedCount, 12);
+  // Every knot that was not there at the start lies near the fold (|s - 0.5| < 0.2).
+  int added = 0;
+  for (double t : rod.knots().values()) {
+    if (std::find(initialKnots.begin(), initialKnots.end(), t) != initialKnots.end()) continue;
+    ++added;
+    EXPECT_LT(std::abs(t - 0.5), 0.2) << "added knot at " << t;
+  }
+  EXPECT_GE(added, 2);
+  // Straighten: take both ends and pull them apart until the rope is taut and horizontal.
+  // (Releasing the peg and letting the rope hang from one end is not used: the falling half whips
+  // into a small loop, which in an exactly planar simulation can never come out.)
+  const Vec3 leftStart = rod.position(0.0);
+  const Vec3 rightStart = rod.position(1.0);
+  const int leftEnd = rod.pin(0.0);
+  const int rightEnd = rod.pin(1.0);
+  rod.releasePin(peg);
+  const Vec3 leftGoal(-0.502, 0.0, 0.0);
+  const Vec3 rightGoal(0.502, 0.0, 0.0);
+  int removals = 0;
+  for (int i = 0; i < 240 * 8; ++i) {
+    const double u = std::min(1.0, (i + 1) / (240.0 * 4));
+    rod.setPinTarget(leftEnd, (1.0 - u) * leftStart + u * leftGoal);
+    rod.setPinTarget(rightEnd, (1.0 - u) * rightStart + u * rightGoal);
+    const StepReport report = rod.step(1.0 / 240);
+    ASSERT_TRUE(report.ok) << report.failure;
+    EXPECT_GE(report.controlPoints, settings.minControlPoints);
+    EXPECT_LE(report.controlPoints, settings.maxControlPoints);
+    removals += report.removals;
+    EXPECT_LE(report.maxRemovalError, settings.removalErrorBound);
+  }
+  EXPECT_GT(test::lowestY(rod), -0.02);  // taut and nearly straight
+  EXPECT_LE(rod.controlPointCount(), 12);
+  EXPECT_GT(removals, 0);
+  std::printf("[fold] initial 12, folded %d (max %d, %d insertions), straightened %d (%d removals)\n", foldedCount,
+              maxCount, insertions, rod.controlPointCount(), removals);
+}
+
+TEST(Adaptivity, CountsStayWithinTheLimits) {
+  RodSettings settings;
+  settings.restLength = 1.0;
+  settings.linearDensity = 0.05;
+  settings.youngsModulus = 1e8;
+  settings.bendingStiffness = 0.0;
+  settings.initialControlPoints = 6;
+  settings.minControlPoints = 5;
+  settings.maxControlPoints = 9;
+  Rod rod = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  rod.pin(0.0);
+  rod.pin(1.0, Vec3(0.2, 0, 0));  // violently slack: lots of bending
+  for (int i = 0; i < 600; ++i) {
+    const StepReport report = rod.step(1.0 / 240);
+    ASSERT_TRUE(report.ok);
+    ASSERT_GE(report.controlPoints, 5);
+    ASSERT_LE(report.controlPoints, 9);
+  }
+}
+
+}  // namespace
+}  // namespace rope

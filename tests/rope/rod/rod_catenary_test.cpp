@@ -1,0 +1,134 @@
+// Scenario: a rope pinned at both ends hangs in the catenary ([A] §5.1's two fixed extremities).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rope/rod/rod.h"
+#include "tests/rope/rod/rod_test_util.h"
+
+namespace rope {
+namespace {
+
+constexpr double kSpan = 1.0;
+constexpr double kLength = 1.25 * kSpan;  // slack ratio 1.25
+constexpr double kG = 9.81;
+
+// Inextensible catenary: L = 2a sinh(D / 2a), sag = a (cosh(D / 2a) - 1); a by bisection.
+double inextensibleSag(double span, double length) {
+  double lo = 1e-3, hi = 100.0;  // L(a) decreases in a
+  for (int i = 0; i < 200; ++i) {
+    const double a = 0.5 * (lo + hi);
+    (2.0 * a * std::sinh(span / (2.0 * a)) > length ? lo : hi) = a;
+  }
+  const double a = 0.5 * (lo + hi);
+  return a * (std::cosh(span / (2.0 * a)) - 1.0);
+}
+
+// Elastic catenary for the rod's own constitutive law. With p the unstretched arclength from the
+// lowest point, weight w = mu g per unstretched length and horizontal tension H: V = w p,
+// T = sqrt(H^2 + V^2), and the Green–Lagrange energy (EA/8)(gamma^2 - 1)^2 gives
+// T = dE/dgamma = (EA/2) gamma (gamma^2 - 1), solved for gamma; dx/dp = gamma H/T, dy/dp = gamma V/T.
+// Integrated by Simpson's rule; H chosen by bisection so that the half span is reached at p = L/2.
+struct ElasticCatenary {
+  double ea, w, length;
+  double stretch(double tension) const {
+    double lo = 1.0, hi = 2.0;
+    for (int i = 0; i < 100; ++i) {
+      const double g = 0.5 * (lo + hi);
+      (0.5 * ea * g * (g * g - 1.0) < tension ? lo : hi) = g;
+    }
+    return 0.5 * (lo + hi);
+  }
+  // Returns (x, y) at p = L/2 for horizontal tension H.
+  std::pair<double, double> end(double h) const {
+    const int n = 2000;
+    const double dp = 0.5 * length / n;
+    double x = 0.0, y = 0.0;
+    for (int i = 0; i <= n; ++i) {
+      const double p = i * dp;
+      const double t = std::sqrt(h * h + w * w * p * p);
+      const double g = stretch(t);
+      const double weight = (i == 0 || i == n) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+      x += weight * g * h / t;
+      y += weight * g * w * p / t;
+    }
+    return {x * dp / 3.0, y * dp / 3.0};
+  }
+  double sag(double span) const {
+    double lo = 1e-4, hi = 1e4;  // x(L/2) grows with H
+    for (int i = 0; i < 100; ++i) {
+      const double h = std::sqrt(lo * hi);
+      (end(h).first < 0.5 * span ? lo : hi) = h;
+    }
+    return end(std::sqrt(lo * hi)).second;
+  }
+};
+
+// A V-shaped polyline of (about) the rope's length between the two supports at y = 0.
+PointList vShape() {
+  const double depth = std::sqrt(0.25 * kLength * kLength - 0.25 * kSpan * kSpan);
+  PointList v;
+  for (int i = 0; i <= 6; ++i) {
+    const double u = i / 6.0;
+    v.emplace_back(-0.5 * kSpan + u * kSpan, -depth * (1.0 - std::abs(2.0 * u - 1.0)), 0.0);
+  }
+  return v;
+}
+
+Rod settle(const RodSettings& settings, double seconds, double h) {
+  Rod rod = Rod::fromPolyline(settings, vShape());
+  rod.pin(rod.beginParameter(), Vec3(-0.5 * kSpan, 0, 0));
+  rod.pin(rod.endParameter(), Vec3(0.5 * kSpan, 0, 0));
+  const int steps = static_cast<int>(seconds / h);
+  for (int i = 0; i < steps; ++i) {
+    const StepReport report = rod.step(h);
+    EXPECT_TRUE(report.ok) << report.failure;
+    if (!report.ok) break;
+    EXPECT_LE(report.controlPoints, settings.maxControlPoints);
+  }
+  return rod;
+}
+
+TEST(RodCatenary, StiffRopeSettlesToTheAnalyticCatenaryWithAtMost16ControlPoints) {
+  RodSettings settings;
+  settings.restLength = kLength;
+  settings.linearDensity = 0.1;
+  settings.youngsModulus = 1e9;   // EA = 78.5 kN: strain ~1e-5, inextensible for this test
+  settings.bendingStiffness = 0.0;  // the catenary has no bending stiffness ([A]'s model)
+  settings.massDamping = 3.0;
+  settings.maxControlPoints = 16;
+  for (double h : {1.0 / 240, 1.0 / 60}) {
+    const Rod rod = settle(settings, 12.0, h);
+    const double sag = -test::lowestY(rod);
+    const double expected = inextensibleSag(kSpan, kLength);
+    EXPECT_NEAR(sag, expected, 0.01 * expected) << "h = " << h;
+    EXPECT_LE(rod.controlPointCount(), 16);
+    EXPECT_LT(rod.velocity(0.5 * kLength).norm(), 1e-3);
+    std::printf("[catenary h=1/%.0f] sag %.6f m, analytic %.6f m (%.3f%%), %d control points\n", 1.0 / h, sag,
+                expected, 100.0 * (sag - expected) / expected, rod.controlPointCount());
+  }
+}
+
+TEST(RodCatenary, SoftRopeAgreesWithTheElasticCatenary) {
+  RodSettings settings;
+  settings.restLength = kLength;
+  settings.linearDensity = 0.1;
+  settings.radius = 0.005;
+  settings.youngsModulus = 20.0 / settings.area();  // EA = 20 N: several percent of strain
+  settings.bendingStiffness = 0.0;
+  settings.massDamping = 3.0;
+  settings.maxControlPoints = 16;
+  const Rod rod = settle(settings, 12.0, 1.0 / 240);
+  const double sag = -test::lowestY(rod);
+  const ElasticCatenary elastic{settings.axialStiffness(), settings.linearDensity * kG, kLength};
+  const double expected = elastic.sag(kSpan);
+  const double rigid = inextensibleSag(kSpan, kLength);
+  EXPECT_NEAR(sag, expected, 0.01 * expected);
+  EXPECT_GT(sag - rigid, 0.03 * rigid);  // the test can tell the two apart
+  EXPECT_GT(rod.maxStrain(), 0.03);
+  std::printf("[elastic catenary] sag %.6f m, elastic analytic %.6f m (%.3f%%), inextensible %.6f m, max strain %.4f\n",
+              sag, expected, 100.0 * (sag - expected) / expected, rigid, rod.maxStrain());
+}
+
+}  // namespace
+}  // namespace rope

@@ -151,8 +151,8 @@ TEST(TriangleMeshContacts, CapsuleLyingOnAFlatMesh) {
     EXPECT_GE(underTheAxis, 4);
   }
   // Beyond the margin: nothing.
-  EXPECT_TRUE(contactsWith(shape, {2.3, 0.151 + meshMargin, 1.6}, {4.1, 0.151 + meshMargin, 2.2},
-                           0.1, 0.05)
+  const btScalar beyond = btScalar(0.151) + meshMargin;
+  EXPECT_TRUE(contactsWith(shape, btVector3(2.3, beyond, 1.6), btVector3(4.1, beyond, 2.2), 0.1, 0.05)
                   .empty());
 }
 

@@ -218,9 +218,9 @@ TEST(ConvexContact, ConeUpAxisVariants) {
   const btScalar m = coneX.getMargin();
   // A point-like capsule straight beyond the apex: distance = gap - r - margin.
   expectContact(contactsWith(coneX, {0.8, 0, 0}, {1.5, 0, 0}, 0.1, 0.5), 0.2 - m, {1, 0, 0},
-                {0.5 + m, 0, 0});
+                btVector3(btScalar(0.5) + m, 0, 0));
   expectContact(contactsWith(coneZ, {0, 0, -0.8}, {0, 0, -1.5}, 0.1, 0.5), 0.2 - m, {0, 0, -1},
-                {0, 0, -0.5 - m});
+                btVector3(0, 0, btScalar(-0.5) - m));
 }
 
 TEST(ConvexContact, ConvexHullTetrahedronWithMargin) {
@@ -251,7 +251,8 @@ TEST(ConvexContact, SpeculativeContactsReportTheExactGapUpToTheMargin) {
   const double margin = 0.1;
   for (double gap : {1e-6, 0.01, 0.05, 0.0999999}) {
     const auto contacts =
-        contactsWith(sphere, {-0.3, 0.6 + gap, 0}, {0.3, 0.6 + gap, 0}, 0.1, margin);
+        contactsWith(sphere, btVector3(-0.3, btScalar(0.6 + gap), 0),
+                     btVector3(0.3, btScalar(0.6 + gap), 0), 0.1, margin);
     ASSERT_EQ(contacts.size(), 1u) << gap;
     EXPECT_GT(contacts[0].distance, 0.0);
     EXPECT_LE(contacts[0].distance, margin);

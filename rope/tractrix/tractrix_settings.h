@@ -46,7 +46,8 @@ struct TractrixSettings {
   int maxControlPoints = 256;
 
   // A merge is accepted only if it leaves no affected corner below subdivisionAngle, so that a
-  // merge never provokes a subdivision at the next check (no flicker). Off = [B]'s plain rule.
+  // merge does not itself create a corner the next check would cut again (insert/remove flicker).
+  // Off = [B]'s plain rule.
   bool guardMerges = true;
 
   // A merge may move the curve by at most this fraction of the initial curve length (the removal's
@@ -58,10 +59,10 @@ struct TractrixSettings {
   // integrand is smooth on a span; 8 points give ~1e-9 relative on the shapes a rope takes.
   int lengthGaussPoints = 8;
 
-  // Convenience: set both thresholds from degrees.
   // The floor minControlPoints stands for (resolves the 0 default).
   int effectiveMinControlPoints() const { return minControlPoints == 0 ? segmentCount + 1 : minControlPoints; }
 
+  // Convenience: set both thresholds from degrees.
   void setThresholdsDegrees(double subdivisionDegrees, double mergingDegrees) {
     subdivisionAngle = degrees(subdivisionDegrees);
     mergingAngle = degrees(mergingDegrees);

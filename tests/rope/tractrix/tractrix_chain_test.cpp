@@ -51,7 +51,7 @@ TEST(TractrixChain, KeepsEverySegmentLengthAndDisplacementsDecay) {
     }
   }
   EXPECT_LT(worstLength, 1e-12);
-  RecordProperty("worst_segment_length_error", std::to_string(worstLength));
+  RecordProperty("worst_segment_length_error", formatValue(worstLength));
 }
 
 TEST(TractrixChain, EachSegmentFollowsTheClosedForm) {

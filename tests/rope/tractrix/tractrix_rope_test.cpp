@@ -120,7 +120,7 @@ TEST(TractrixRope, PolylineKeepsEverySegmentLengthAndDisplacementsDecay) {
     }
   }
   EXPECT_LT(worst, 1e-12);
-  RecordProperty("worst_segment_length_error", std::to_string(worst));
+  RecordProperty("worst_segment_length_error", formatValue(worst));
 }
 
 TEST(TractrixRope, SplinePassKeepsPolygonSidesAndReportsTheStep) {

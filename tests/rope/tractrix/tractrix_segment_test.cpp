@@ -60,7 +60,7 @@ TEST(TractrixSegment, AgreesWithNumericalOdeIn3D) {
     EXPECT_NEAR((a2 - closed).norm(), (a - b).norm(), 1e-12);
   }
   EXPECT_LT(worst, 1e-6);
-  RecordProperty("worst_ode_difference", std::to_string(worst));
+  RecordProperty("worst_ode_difference", formatValue(worst));
 }
 
 TEST(TractrixSegment, NearlyCollinearCasesAgreeWithOde) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <thread>
 
 #include "rope/common/error.h"
 
@@ -104,15 +105,27 @@ void convertFrame(const std::uint8_t* rgba, int width, int height, bool antiAlia
   }
   copyRow(source, 0, out.pixel(0, 0));
   copyRow(source, height - 1, out.pixel(0, height - 1));
-  for (int y = 1; y + 1 < height; ++y) {
-    std::uint8_t* target = out.pixel(0, y);
-    const std::uint8_t* first = source.at(0, y);
-    const std::uint8_t* last = source.at(width - 1, y);
-    for (int k = 0; k < 3; ++k) {
-      target[k] = first[k];
-      target[3 * (width - 1) + k] = last[k];
+  auto filterRows = [&source, &out, width](int begin, int end) {
+    for (int y = begin; y < end; ++y) {
+      std::uint8_t* target = out.pixel(0, y);
+      const std::uint8_t* first = source.at(0, y);
+      const std::uint8_t* last = source.at(width - 1, y);
+      for (int k = 0; k < 3; ++k) {
+        target[k] = first[k];
+        target[3 * (width - 1) + k] = last[k];
+      }
+      for (int x = 1; x + 1 < width; ++x) filterPixel(source, x, y, target + 3 * x);
     }
-    for (int x = 1; x + 1 < width; ++x) filterPixel(source, x, y, target + 3 * x);
+  };
+  // Large frames are split between this thread and one helper: the GL worker threads are idle
+  // while the frame is converted, and the filter reads the immutable source only.
+  const int middle = height / 2;
+  if (static_cast<long>(width) * height >= 200000) {
+    std::thread helper(filterRows, middle, height - 1);
+    filterRows(1, middle);
+    helper.join();
+  } else {
+    filterRows(1, height - 1);
   }
 }
 

@@ -9,9 +9,9 @@
 // to libccd's MPR on the capsule inflated by `margin` against the full shape: distance =
 // margin - MPR depth. MPR measures the depth where the ray between two interior points leaves
 // the Minkowski difference; we start that ray at the axis point nearest the body's centre, so it
-// is perpendicular to the rope. The deep case is therefore an estimate: exact when the minimum
-// translation runs along that ray (e.g. a body centred under the rope, a face contact), otherwise
-// an overestimate of the depth along a direction perpendicular to the rope.
+// is perpendicular to the rope unless that point is an end of the axis. The deep case is
+// therefore an estimate: exact when the minimum translation runs along that ray (e.g. a body
+// centred under the rope, a face contact), otherwise larger than the minimum translation.
 //
 // MPR alone is not exact even for shallow contacts: with the segment midpoint as the capsule's
 // centre, a sphere of radius 0.5 overlapping a 2 m capsule of radius 0.2 near one end, its centre

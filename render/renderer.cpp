@@ -278,6 +278,7 @@ struct Draw {
   Rgb colour;
   Material material;
   Vec3 groundNormal;  // world normal, for Material::Ground
+  Vec3 groundPoint;   // a world point on the ground plane, for Material::Ground
 };
 
 // A linked program and lookup of its uniforms by name (missing ones give -1, which GL ignores).
@@ -521,16 +522,18 @@ void Renderer::Impl::render(const Scene& scene, const Camera& camera, Image& out
     if (item.mesh->empty()) continue;
     const Eigen::Matrix3d linearPart = item.transform.linear();
     const auto& n = item.mesh->vertices.front().normal;
+    const auto& p = item.mesh->vertices.front().position;
     draws.push_back(Draw{&upload(item.mesh), item.transform.matrix().cast<float>(), linearPart.cast<float>(),
-                         item.colour, item.material, (linearPart * Vec3(n[0], n[1], n[2])).normalized()});
+                         item.colour, item.material, (linearPart * Vec3(n[0], n[1], n[2])).normalized(),
+                         item.transform * Vec3(p[0], p[1], p[2])});
   }
   if (settings.autoGround && !scene.hasGround()) {
     const double half = 1.5 * fogEnd + radius;
     Eigen::Affine3d placement = Eigen::Affine3d::Identity();
-    placement.translate(Vec3(bounds.center().x(), bounds.min.y(), bounds.center().z()));
+    placement.translate(Vec3(bounds.center().x(), std::min(0.0, bounds.min.y()), bounds.center().z()));
     placement.scale(Vec3(half, 1.0, half));
     draws.push_back(Draw{&upload(groundQuad), placement.matrix().cast<float>(), Eigen::Matrix3f::Identity(),
-                         Rgb(0.80f, 0.80f, 0.78f), Material::Ground, Vec3::UnitY()});
+                         Rgb(0.80f, 0.80f, 0.78f), Material::Ground, Vec3::UnitY(), placement.translation()});
   }
 
   // ---- Shadow pass: an orthographic light frustum fitted to the casters and to where their
@@ -539,12 +542,22 @@ void Renderer::Impl::render(const Scene& scene, const Camera& camera, Image& out
   float shadowTexel = 0.0f, normalOffset = 0.0f;
   const bool shadows = settings.shadows && !sceneBounds.empty();
   if (shadows) {
+    // Shadows land on the lowest ground (its height under the scene's centre) or on the scene itself.
+    double receiverHeight = bounds.min.y();
+    for (const Draw& draw : draws) {
+      if (draw.material != Material::Ground || std::abs(draw.groundNormal.y()) < 0.1) continue;
+      const Vec3& onPlane = draw.groundPoint;
+      const Vec3 offset = bounds.center() - onPlane;
+      const double height = onPlane.y() - (draw.groundNormal.x() * offset.x() + draw.groundNormal.z() * offset.z()) /
+                                              draw.groundNormal.y();
+      receiverHeight = std::min(receiverHeight, height);
+    }
     std::vector<Vec3> points;
     for (int i = 0; i < 8; ++i) {
       const Vec3 corner((i & 1) ? bounds.max.x() : bounds.min.x(), (i & 2) ? bounds.max.y() : bounds.min.y(),
                         (i & 4) ? bounds.max.z() : bounds.min.z());
       points.push_back(corner);
-      if (toLight.y() > 0.05) points.push_back(corner - toLight * ((corner.y() - bounds.min.y()) / toLight.y()));
+      if (toLight.y() > 0.05) points.push_back(corner - toLight * ((corner.y() - receiverHeight) / toLight.y()));
     }
     const Vec3 center = bounds.center();
     const Vec3 up = std::abs(toLight.y()) < 0.99 ? Vec3::UnitY() : Vec3::UnitX();

@@ -30,8 +30,8 @@ struct RenderSettings {
   int shadowMapSize = 1024;
   // Direction the light travels (from the light towards the scene); any non-zero length.
   Vec3 lightDirection{1.0, -1.2, -0.55};
-  // A grid-covered ground is drawn under the scene (at its lowest point) when the scene has no
-  // Material::Ground item of its own.
+  // A grid-covered ground is drawn at y = min(0, lowest point of the scene) when the scene has no
+  // Material::Ground item of its own (Y is up, as in Bullet's defaults).
   bool autoGround = true;
   double gridSpacing = 0.25;    // metres between minor grid lines (every 5th is a major line), > 0
   Rgb horizonColour{0.86f, 0.89f, 0.93f};  // sky at the horizon and distance haze (sRGB)

@@ -186,6 +186,19 @@ TEST_F(RendererTest, EmptySceneAndDefaultCamera) {
   EXPECT_GT(image.pixel(kWidth / 2, 0)[2], image.pixel(kWidth / 2, 0)[0]);
 }
 
+TEST_F(RendererTest, SceneWithoutAPlaneGetsAGroundUnderIt) {
+  Renderer renderer(smallSettings());
+  Scene scene;
+  addRope(scene, test::ropeKnots(), test::ropePoints());
+  const Image image = renderer.render(scene);
+  // Bottom rows: the automatic ground (light grey, unsaturated), not sky.
+  for (int x = 0; x < kWidth; x += 40) {
+    const std::uint8_t* p = image.pixel(x, kHeight - 2);
+    EXPECT_GT(std::min({p[0], p[1], p[2]}), 120);
+    EXPECT_LT(std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}), 30);
+  }
+}
+
 TEST_F(RendererTest, KeepsTheCallersFloatingPointTraps) {
   const int before = fegetexcept();
   ASSERT_NE(before & FE_INVALID, 0);

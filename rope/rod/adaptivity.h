@@ -11,6 +11,11 @@
 // removal changes (c < removal threshold), the removal error is within the bound, and the polygon after
 // removal would not immediately qualify for re-insertion (c < insertion threshold): the hysteresis
 // between the two thresholds plus this look-ahead keeps knots from flickering.
+// Rest curve: insertion refines it exactly (same plan). Removal is applied to it with the same plan
+// too, and is allowed only if the rest curve moves by at most the same bound: a straight rest curve
+// parametrised by arclength is linear in s and is removed exactly, so the material never changes; a
+// curved rest curve keeps the knots it needs to stay within the bound. Knots at interaction points
+// (pins, this step's loads) and knots whose removal would move a pinned point are kept.
 
 #include <vector>
 

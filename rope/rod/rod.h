@@ -136,7 +136,8 @@ class Rod {
   StepReport step(double h);
 
   // ---- explicit refinement and cutting ----
-  // Exact insertion ([A] §3.1): positions and velocities along the curve do not change.
+  // Exact insertion ([A] §3.1): positions and velocities along the curve do not change. Explicit edits
+  // are not bound by min/maxControlPoints (those limit adaptivity).
   void insertKnot(double s);
   // Removes one occurrence of the knot s ([A] eq. 7); returns how much the fields moved.
   RemovalReport removeKnot(double s);

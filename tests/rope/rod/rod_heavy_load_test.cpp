@@ -8,7 +8,9 @@
 namespace rope {
 namespace {
 
-TEST(RodHeavyLoad, SettlesAtTheStaticStrainAndStaysStableFor60Seconds) {
+class RodHeavyLoad : public ::testing::TestWithParam<double> {};
+
+TEST_P(RodHeavyLoad, SettlesAtTheStaticStrainAndStaysStableFor60Seconds) {
   RodSettings settings;
   settings.restLength = 1.0;
   settings.linearDensity = 0.01;  // kg/m
@@ -18,8 +20,8 @@ TEST(RodHeavyLoad, SettlesAtTheStaticStrainAndStaysStableFor60Seconds) {
   Rod rod = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(0, -1, 0));
   rod.pin(0.0);
   const double weight = 10.0 * 9.81;  // N, the 10 kg load
-  const double h = 1.0 / 240;
-  const int steps = 60 * 240;
+  const double h = GetParam();
+  const int steps = static_cast<int>(60.0 / h + 0.5);
   double lowest = 1.0, highest = -2.0;
   for (int i = 0; i < steps; ++i) {
     rod.addForce(1.0, Vec3(0, -weight, 0));
@@ -35,14 +37,20 @@ TEST(RodHeavyLoad, SettlesAtTheStaticStrainAndStaysStableFor60Seconds) {
   const double ea = settings.axialStiffness();
   const double expected = (weight + 0.5 * settings.linearDensity * 9.81) / ea;
   const double strain = (rod.length() - 1.0) / 1.0;
-  EXPECT_NEAR(strain, expected, 0.02 * expected);
+  // At h = 1/240 s (the acceptance case) within 2 %. At h = 1/60 s adaptivity coarsens the knots
+  // differently (non-uniform spans), where the locking-free stretching rule carries an O(h^2) strain
+  // error (see StretchingQuadrature::kLockingFree): measured 5.5 %, so only stability and 10 % there.
+  const double tolerance = h < 1.0 / 100 ? 0.02 : 0.10;
+  EXPECT_NEAR(strain, expected, tolerance * expected);
   EXPECT_NEAR(weight / ea, expected, 0.01 * expected);
   // Stable: the end stays put over the second half (no oscillation or drift beyond 1 micrometre).
   EXPECT_LT(highest - lowest, 1e-6);
   EXPECT_LT(std::abs(rod.position(1.0).x()), 1e-9);
-  std::printf("[heavy load] strain %.6e, W/EA %.6e (with rope weight %.6e), end y %.9f\n", strain, weight / ea,
+  std::printf("[heavy load h=1/%.0f] strain %.6e, W/EA %.6e (with rope weight %.6e), end y %.9f\n", 1.0 / h, strain, weight / ea,
               expected, rod.position(1.0).y());
 }
+
+INSTANTIATE_TEST_SUITE_P(TimeSteps, RodHeavyLoad, ::testing::Values(1.0 / 240, 1.0 / 60));
 
 }  // namespace
 }  // namespace rope

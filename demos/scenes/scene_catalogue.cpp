@@ -1,4 +1,6 @@
+#include "demos/scenes/crane_scene.h"
 #include "demos/scenes/demo_scene.h"
+#include "demos/scenes/drape_scene.h"
 #include "demos/scenes/hang_scene.h"
 #include "demos/scenes/tractrix_scene.h"
 
@@ -12,6 +14,12 @@ const std::vector<SceneEntry>& sceneCatalogue() {
       {"tractrix",
        "follow-the-leader: TRX with 20 segments beside TRX_SD_MRG on the same path",
        10.0, [] { return std::unique_ptr<DemoScene>(new TractrixScene(TractrixSceneSettings{})); }},
+      {"drape", "Bullet world: a rope falls onto a static box and comes to rest on it",
+       5.0, [] { return std::unique_ptr<DemoScene>(new DrapeScene(DrapeSceneSettings{})); }},
+      {"thinbar", "Bullet world: a rope dropped from 1 m drapes over a 2 mm static bar",
+       5.0, [] { return std::unique_ptr<DemoScene>(new DrapeScene(DrapeSceneSettings::thinBar())); }},
+      {"crane", "Bullet world: a 10 kg box on a 0.01 kg/m rope, attached at both ends; the top is lifted",
+       8.0, [] { return std::unique_ptr<DemoScene>(new CraneScene(CraneSceneSettings{})); }},
   };
   return catalogue;
 }

@@ -1,0 +1,50 @@
+#pragma once
+// What the ropes of a world did in one Bullet substep, for users' own checks (e.g. CI tests that a
+// rope never sinks into a body): every contact with its force and friction state, and per rope the
+// deepest penetration and the health of its step.
+
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+#include <LinearMath/btVector3.h>
+
+#include <vector>
+
+#include "bullet_bridge/bullet_precision.h"
+
+namespace rope::bullet {
+
+class RopeObject;
+
+struct RopeContactRecord {
+  const RopeObject* rope = nullptr;
+  const btCollisionObject* body = nullptr;
+  double s = 0.0;                  // curve parameter of the contact on the rope
+  btVector3 point{0, 0, 0};        // on the body surface, world frame, m (start of the substep)
+  btVector3 normal{0, 0, 1};       // unit, from the body into the rope
+  double depth = 0.0;              // penetration, m (> 0 penetrating, < 0 speculative gap)
+  btVector3 force{0, 0, 0};        // force on the rope over the substep, N (the body got -force * h)
+  bool sticking = false;           // tangential slip below the friction regularisation velocity
+  bool active = false;             // false: a speculative contact that did not act in this substep
+};
+
+struct RopeStepRecord {
+  const RopeObject* rope = nullptr;
+  bool ok = true;                // false: the rod step failed and the rope kept its state
+  const char* failure = "";      // why (static text)
+  double maxPenetration = 0.0;   // m, deepest contact at the start of the substep (0 if none)
+  int contacts = 0;              // active contacts
+  int proxyOverflows = 0;        // capsules whose box was too large for Bullet (not updated)
+  int skippedBodies = 0;         // candidate bodies skipped (non-finite transform, unsupported shape)
+  int controlPoints = 0;         // after the step's adaptivity
+  int insertions = 0;            // knots inserted by the step's adaptivity
+  int removals = 0;              // knots removed by the step's adaptivity
+};
+
+struct ContactReport {
+  long substep = 0;     // substeps run since the RopeWorld was created (1 for the first)
+  double timeStep = 0;  // s
+  std::vector<RopeContactRecord> contacts;
+  std::vector<RopeStepRecord> ropes;
+  double maxPenetration() const;  // over all ropes, m
+};
+
+}  // namespace rope::bullet

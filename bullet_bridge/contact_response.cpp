@@ -1,0 +1,51 @@
+#include "bullet_bridge/contact_response.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rope::bullet {
+
+ContactSpring contactSpring(const ContactLaw& law, double distance, const Vec3& normal, const Vec3& ropeVelocity,
+                            const Vec3& bodyVelocity, double h) {
+  const Vec3 w = ropeVelocity - bodyVelocity;
+  const Eigen::Matrix3d nn = normal * normal.transpose();
+  const Eigen::Matrix3d tangentPlane = Eigen::Matrix3d::Identity() - nn;
+
+  ContactSpring spring;
+  const double normalForce = -law.stiffness * distance - law.damping * normal.dot(w) +
+                             law.stiffness * h * normal.dot(bodyVelocity);
+  spring.force = normalForce * normal;
+  spring.stiffness = law.stiffness * nn;
+  spring.damping = law.damping * nn;
+
+  // Friction bound from the normal force at the current state (not its damping part, which would
+  // make friction depend on the approach speed).
+  const double pressing = std::max(0.0, -law.stiffness * distance);
+  if (law.friction > 0.0 && pressing > 0.0) {
+    const Vec3 slip = tangentPlane * w;
+    const double eta = std::min(law.frictionDampingLimit,
+                                law.friction * pressing / std::max(slip.norm(), law.frictionVelocity));
+    spring.force -= eta * slip;
+    spring.damping += eta * tangentPlane;
+  }
+  return spring;
+}
+
+bool contactActive(double distance, const Vec3& normal, const Vec3& ropeVelocity, const Vec3& bodyVelocity,
+                   const Vec3& gravity, double h) {
+  const double predicted = distance + h * normal.dot(ropeVelocity - bodyVelocity) + h * h * normal.dot(gravity);
+  return predicted < 0.0;
+}
+
+Vec3 endOfStepForce(const ContactSpring& spring, const Vec3& u, const Vec3& uNew, double h) {
+  return spring.force - h * (spring.stiffness * uNew) - spring.damping * (uNew - u);
+}
+
+void capForBody(double inverseMass, double h, double share, double& stiffness, double& damping) {
+  if (!(inverseMass > 0.0)) return;
+  const double mass = 1.0 / inverseMass;
+  stiffness = std::min(stiffness, share * mass / (h * h));
+  damping = std::min(damping, share * mass / h);
+}
+
+}  // namespace rope::bullet

@@ -1,0 +1,56 @@
+#pragma once
+// Penalty contact with damping and regularised Coulomb friction between a rope point and a body,
+// linearised for the rope's implicit step (Rod::addSpring) and closed by Newton's third law.
+//
+// Law at the end of the step (backward Euler, as the rod's own forces), with gap d, unit normal n from
+// the body into the rope, rope velocity u, body point velocity v_b and w = u - v_b:
+//   f_n = -k d_new - c n.w_new,   d_new = d + h n.(u_new - v_b)          (normal, along n)
+//   f_t = -eta P_t w_new,         eta = mu f_n0 / max(|P_t w|, v_reg)   (tangent, P_t = I - n n^T)
+// so |f_t| <= mu f_n0 when sliding at a steady speed, and below v_reg the friction is a stiff viscous
+// "stick" that stays stable because it is implicit. f_n0 = max(0, normal force at the current state).
+// In Rod::addSpring's form f ~ f0 - K (x_new - x) - D (u_new - u) this is K = k n n^T,
+// D = c n n^T + eta P_t and f0 = (-k d - c n.w + k h n.v_b) n - eta P_t w (the k h n.v_b term lets
+// the body move on during the step).
+//
+// The rope then feels exactly F = f0 - h K u_new - D (u_new - u) over the step (what the rod's system
+// integrates); endOfStepForce() rebuilds it from the rope's new velocity at s, and the body gets -F h
+// at the contact point, so the pair conserves linear momentum to round-off.
+
+#include <Eigen/Core>
+
+#include "rope/common/types.h"
+
+namespace rope::bullet {
+
+struct ContactLaw {
+  double stiffness = 0.0;           // k, N/m
+  double damping = 0.0;             // c, N s/m
+  double friction = 0.0;            // mu
+  double frictionVelocity = 1e-3;   // v_reg, m/s
+  double frictionDampingLimit = 1e300;  // cap on eta, N s/m (explicit stability on light bodies)
+};
+
+struct ContactSpring {
+  Vec3 force = Vec3::Zero();                           // f0, N
+  Eigen::Matrix3d stiffness = Eigen::Matrix3d::Zero(); // K, N/m
+  Eigen::Matrix3d damping = Eigen::Matrix3d::Zero();   // D, N s/m
+};
+
+// The linearised law for a contact at gap `distance` (m, < 0 penetrating) over a step of h seconds.
+ContactSpring contactSpring(const ContactLaw& law, double distance, const Vec3& normal, const Vec3& ropeVelocity,
+                            const Vec3& bodyVelocity, double h);
+
+// Whether a contact acts in this step: the gap is predicted to be closed at its end
+// (d + h n.(u - v_b) + h^2 n.g < 0, g the rope's gravity).
+bool contactActive(double distance, const Vec3& normal, const Vec3& ropeVelocity, const Vec3& bodyVelocity,
+                   const Vec3& gravity, double h);
+
+// The force the rope felt over the step (see the header comment), from its velocity at s before
+// (u) and after (uNew) the step.
+Vec3 endOfStepForce(const ContactSpring& spring, const Vec3& u, const Vec3& uNew, double h);
+
+// Caps a stiffness (N/m) and damping (N s/m) acting on a body of effective mass 1 / inverseMass (kg)
+// to share * the explicit stability limits m / h^2 and m / h; inverseMass == 0 leaves them unchanged.
+void capForBody(double inverseMass, double h, double share, double& stiffness, double& damping);
+
+}  // namespace rope::bullet

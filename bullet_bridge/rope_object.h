@@ -1,0 +1,109 @@
+#pragma once
+// A rope as a Bullet world object: owns a rope::Rod, its capsule proxies (capsule_proxies.h), its
+// attachments (attachment.h) and the contacts of its last substep. The user owns it; a RopeWorld
+// (rope_world.h) adds it to a Bullet world and steps it inside Bullet's substeps.
+//
+//   rope::bullet::RopeWorld ropes(dynamicsWorld);           // once per btDiscreteDynamicsWorld
+//   rope::bullet::RopeObject rope(rope::Rod::fromSegment(rodSettings, a, b));
+//   ropes.addRope(rope);
+//   rope.attachToBody(rope.rod().endParameter(), *box, btVector3(0, 0.1, 0));
+//   dynamicsWorld.stepSimulation(1.0 / 60.0, 4, 1.0 / 240.0);
+//   ropes.removeRope(rope);
+//
+// The rope's gravity, material and discretisation come from its RodSettings (set the gravity to the
+// world's). Between steps the rod may be read freely; change it (pins, setControlPoints, ...) only
+// through rod() while no stepSimulation runs.
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <memory>
+#include <vector>
+
+#include "bullet_bridge/attachment.h"
+#include "bullet_bridge/bullet_precision.h"
+#include "bullet_bridge/capsule_proxies.h"
+#include "bullet_bridge/contact.h"
+#include "bullet_bridge/contact_report.h"
+#include "bullet_bridge/rope_settings.h"
+#include "rope/rod/rod.h"
+
+namespace rope::bullet {
+
+class RopeWorld;
+
+class RopeObject {
+ public:
+  // Throws InvalidArgument naming the settings field (settings.validate()).
+  explicit RopeObject(Rod rod, const BulletRopeSettings& settings = {});
+  // Leaves its world first if it is still in one.
+  ~RopeObject();
+  RopeObject(const RopeObject&) = delete;
+  RopeObject& operator=(const RopeObject&) = delete;
+
+  Rod& rod() { return rod_; }
+  const Rod& rod() const { return rod_; }
+  const BulletRopeSettings& settings() const { return settings_; }
+  RopeWorld* world() const { return world_; }
+  const CapsuleProxies& proxies() const { return *proxies_; }
+
+  // ---- attachments (ids are unique per rope) ----
+  // C(s) to the body's point `localPoint` (centre-of-mass frame). Throws InvalidArgument for s
+  // outside the rope or NaN ("s"), a non-finite localPoint ("localPoint"), bad settings
+  // ("attachment.*"), a rope in no world ("rope"), or a body not in the rope's world ("body").
+  int attachToBody(double s, btRigidBody& body, const btVector3& localPoint, const AttachmentSettings& settings = {});
+  // C(s) held at a world point (a rod pin); move it with setAttachmentTarget. Throws for a bad s
+  // ("s"), a non-finite point ("point") or a pin already at s.
+  int attachToPoint(double s, const btVector3& point);
+  // New target of a point attachment, reached at the end of the next substep (moving target).
+  // Throws for an unknown id or a body attachment ("id") or a non-finite point ("point").
+  void setAttachmentTarget(int id, const btVector3& point);
+  // Throws for an unknown id ("id").
+  void removeAttachment(int id);
+  const std::vector<Attachment>& attachments() const { return attachments_; }
+
+  // ---- last substep ----
+  // Contacts of the last substep; with friction, a contact's force is the sum over the knots it was
+  // shared to (BulletRopeSettings::contactKnotSpacing).
+  const std::vector<RopeContactRecord>& contacts() const { return contacts_; }
+  const RopeStepRecord& lastStep() const { return lastStep_; }
+
+  // One substep of h seconds against the candidate bodies (sorted, deterministic order); called by
+  // RopeWorld's action after Bullet's collision detection, solver and integration of the substep.
+  void substep(const std::vector<const btCollisionObject*>& candidates, double h);
+
+ private:
+  friend class RopeWorld;
+  void enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld);
+  void leaveWorld();
+  int findAttachment(int id) const;
+  void gatherContacts(const std::vector<const btCollisionObject*>& candidates, double h);
+  // Whether the rope is attached to object within 4 radii of the capsule [s0, s1]: the rope's end sits
+  // in the body's surface there, so those contacts are ignored.
+  bool attachedNear(const btCollisionObject& object, double s0, double s1) const;
+  // Queues weight * spring at parameter s on the rod and remembers it for the body's impulse.
+  void queueSpring(double s, double weight, const ContactSpring& spring, btRigidBody* body, const btVector3& point,
+                   int record, int attachment);
+
+  struct PendingSpring {
+    double s;
+    Vec3 velocity;     // rope velocity at s before the step
+    ContactSpring spring;
+    btRigidBody* body;  // receives the opposite impulse (nullptr: static or kinematic)
+    btVector3 point;    // where, world frame
+    int record;         // index in contacts_, or -1 for an attachment
+    int attachment;     // index in attachments_, or -1 for a contact
+  };
+
+  Rod rod_;
+  BulletRopeSettings settings_;
+  std::unique_ptr<CapsuleProxies> proxies_;
+  RopeWorld* world_ = nullptr;
+  std::vector<Attachment> attachments_;
+  int nextAttachmentId_ = 1;
+  std::vector<RopeContactRecord> contacts_;
+  RopeStepRecord lastStep_;
+  std::vector<PendingSpring> pending_;
+  std::vector<Contact> scratch_;
+};
+
+}  // namespace rope::bullet

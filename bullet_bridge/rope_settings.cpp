@@ -1,0 +1,30 @@
+#include "bullet_bridge/rope_settings.h"
+
+#include <cmath>
+#include <string>
+
+#include "rope/common/error.h"
+
+namespace rope::bullet {
+
+void BulletRopeSettings::validate() const {
+  requirePositive("settings.contactStiffness", contactStiffness);
+  requireNonNegative("settings.contactDamping", contactDamping);
+  requireNonNegative("settings.friction", friction);
+  requirePositive("settings.frictionVelocity", frictionVelocity);
+  if (capsulesPerSpan < 1 || capsulesPerSpan > 64) {
+    throw InvalidArgument("settings.capsulesPerSpan", std::to_string(capsulesPerSpan), "must be in [1, 64]");
+  }
+  requireNonNegative("settings.contactKnotSpacing", contactKnotSpacing);
+  requireNonNegative("settings.speculativeMargin", speculativeMargin);
+  requirePositive("settings.initialPredictionTime", initialPredictionTime);
+  requirePositive("settings.bodyStabilityFactor", bodyStabilityFactor);
+  if (bodyStabilityFactor > 1.0) {
+    throw InvalidArgument("settings.bodyStabilityFactor", formatValue(bodyStabilityFactor), "must be <= 1");
+  }
+  if (collisionGroup == 0) {
+    throw InvalidArgument("settings.collisionGroup", "0", "must have at least one bit set");
+  }
+}
+
+}  // namespace rope::bullet

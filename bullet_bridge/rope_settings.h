@@ -1,0 +1,51 @@
+#pragma once
+// What a user configures for a rope living in a Bullet world: the contact law (penalty with damping
+// plus regularised Coulomb friction), the collision proxies and the broadphase filter. SI units.
+// The rope's material, gravity and discretisation stay in rope::RodSettings.
+
+#include <LinearMath/btScalar.h>
+
+#include "bullet_bridge/bullet_precision.h"
+
+namespace rope::bullet {
+
+struct BulletRopeSettings {
+  // Penalty stiffness of one contact point, N/m, > 0. Enters the rope's implicit system
+  // (Rod::addSpring), so the rope side is stable for any value; on a dynamic body the force is an
+  // explicit impulse, so per contact it is capped at bodyStabilityFactor * m_eff / h^2 (m_eff the
+  // body's effective mass at the contact point along the normal).
+  double contactStiffness = 5.0e4;
+  // Penalty damping along the normal, N s/m, >= 0 (capped like the stiffness, by factor * m_eff / h).
+  double contactDamping = 50.0;
+  // Coulomb friction coefficient, >= 0 (0 = frictionless).
+  double friction = 0.5;
+  // Regularisation velocity of Coulomb friction, m/s, > 0: below it the friction force grows linearly
+  // with the sliding speed (viscous "sticking"), above it it is mu * f_n against the sliding direction.
+  double frictionVelocity = 1.0e-3;
+  // Capsules per knot span, in [1, 64]: the collision geometry is the chain of capsules over
+  // capsulesPerSpan equal parameter pieces of every non-empty span; rebuilt after each step.
+  int capsulesPerSpan = 4;
+  // Knots at contacts ([A] §4), m of rope parameter, >= 0: a contact acts at its own parameter s (and
+  // so gets a knot there, giving the rope local freedom to wrap around an edge) only when no knot lies
+  // within this distance of s; otherwise it is shared between the two knots around s by the lever
+  // rule (same total force, no new knot). Keeps a rope lying along a surface from filling up with
+  // contact knots. 0: every contact gets its knot.
+  double contactKnotSpacing = 0.02;
+  // Speculative contact distance, m, >= 0: contacts are found up to this gap before touching and act
+  // only if the step is predicted to close them. Added to every swept bounding box.
+  double speculativeMargin = 0.01;
+  // Time the swept boxes of a freshly added rope cover before the first step told the real step, s, > 0.
+  double initialPredictionTime = 1.0 / 60.0;
+  // Share of the stable explicit limit used on dynamic bodies, in (0, 1] (see contactStiffness).
+  double bodyStabilityFactor = 0.25;
+  // Broadphase filter of the rope's capsules. The default group is a bit no stock Bullet filter uses,
+  // and the mask excludes it, so capsules of ropes never pair with each other.
+  int collisionGroup = 1 << 10;
+  int collisionMask = ~(1 << 10);
+
+  // Throws rope::InvalidArgument naming the field ("settings.contactStiffness", ...) and its value for
+  // anything outside the ranges above, NaN and infinity included.
+  void validate() const;
+};
+
+}  // namespace rope::bullet

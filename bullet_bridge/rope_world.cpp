@@ -1,0 +1,115 @@
+#include "bullet_bridge/rope_world.h"
+
+#include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>
+#include <BulletDynamics/Dynamics/btActionInterface.h>
+#include <LinearMath/btAabbUtil2.h>
+
+#include <algorithm>
+
+#include "bullet_bridge/capsule_proxies.h"
+#include "bullet_bridge/rope_debug_draw.h"
+#include "rope/common/error.h"
+
+namespace rope::bullet {
+
+// Bullet calls updateAction once per internal substep with dt = the fixed step, after collision
+// detection, the solver and integration of that substep (btDiscreteDynamicsWorld::
+// internalSingleStepSimulation -> updateActions).
+class RopeWorld::Action : public btActionInterface {
+ public:
+  explicit Action(RopeWorld& owner) : owner_(owner) {}
+  void updateAction(btCollisionWorld*, btScalar dt) override { owner_.substep(static_cast<double>(dt)); }
+  void debugDraw(btIDebugDraw* drawer) override {
+    if (owner_.debugDraw_ && drawer != nullptr) drawRopes(owner_, *drawer);
+  }
+
+ private:
+  RopeWorld& owner_;
+};
+
+double ContactReport::maxPenetration() const {
+  double deepest = 0.0;
+  for (const RopeStepRecord& rope : ropes) deepest = std::max(deepest, rope.maxPenetration);
+  return deepest;
+}
+
+RopeWorld::RopeWorld(btDiscreteDynamicsWorld& world) : world_(world), action_(std::make_unique<Action>(*this)) {
+  world_.addAction(action_.get());
+}
+
+RopeWorld::~RopeWorld() {
+  while (!ropes_.empty()) removeRope(*ropes_.back());
+  world_.removeAction(action_.get());
+}
+
+bool RopeWorld::contains(const RopeObject& rope) const {
+  return std::find(ropes_.begin(), ropes_.end(), &rope) != ropes_.end();
+}
+
+bool RopeWorld::containsBody(const btCollisionObject& object) const {
+  if (CapsuleProxies::ropeOf(object) != nullptr) return false;
+  const int index = object.getWorldArrayIndex();
+  const btCollisionObjectArray& objects = world_.getCollisionObjectArray();
+  return index >= 0 && index < objects.size() && objects[index] == &object;
+}
+
+void RopeWorld::addRope(RopeObject& rope) {
+  if (contains(rope)) throw InvalidArgument("rope", "already in this world", "must not be added twice");
+  if (rope.world() != nullptr) throw InvalidArgument("rope", "in another world", "must be removed from it first");
+  ropes_.push_back(&rope);
+  rope.enterWorld(*this, world_);
+}
+
+void RopeWorld::removeRope(RopeObject& rope) {
+  const auto it = std::find(ropes_.begin(), ropes_.end(), &rope);
+  if (it == ropes_.end()) throw InvalidArgument("rope", "not in this world", "must have been added to it");
+  rope.leaveWorld();
+  ropes_.erase(it);
+  report_ = ContactReport();
+}
+
+void RopeWorld::substep(double h) {
+  // Candidate bodies per rope from Bullet's pair cache. The cache may still hold pairs whose boxes
+  // stopped overlapping (it cleans up lazily), so the overlap is checked again.
+  candidates_.resize(ropes_.size());
+  for (auto& list : candidates_) list.clear();
+  btBroadphasePairArray& pairs = world_.getPairCache()->getOverlappingPairArray();
+  for (int i = 0; i < pairs.size(); ++i) {
+    const btBroadphaseProxy* proxy0 = pairs[i].m_pProxy0;
+    const btBroadphaseProxy* proxy1 = pairs[i].m_pProxy1;
+    if (proxy0 == nullptr || proxy1 == nullptr) continue;
+    const auto* object0 = static_cast<const btCollisionObject*>(proxy0->m_clientObject);
+    const auto* object1 = static_cast<const btCollisionObject*>(proxy1->m_clientObject);
+    RopeObject* rope0 = CapsuleProxies::ropeOf(*object0);
+    RopeObject* rope1 = CapsuleProxies::ropeOf(*object1);
+    if ((rope0 == nullptr) == (rope1 == nullptr)) continue;  // no rope, or two rope capsules
+    RopeObject* rope = rope0 != nullptr ? rope0 : rope1;
+    const btCollisionObject* body = rope0 != nullptr ? object1 : object0;
+    // Triggers and other objects that want no contact response get none from ropes either.
+    if (body->hasContactResponse() == false) continue;
+    if (!TestAabbAgainstAabb2(proxy0->m_aabbMin, proxy0->m_aabbMax, proxy1->m_aabbMin, proxy1->m_aabbMax)) continue;
+    const auto slot = std::find(ropes_.begin(), ropes_.end(), rope);
+    if (slot == ropes_.end()) continue;
+    candidates_[static_cast<std::size_t>(slot - ropes_.begin())].push_back(body);
+  }
+
+  report_.substep += 1;
+  report_.timeStep = h;
+  report_.contacts.clear();
+  report_.ropes.clear();
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    std::vector<const btCollisionObject*>& list = candidates_[r];
+    // Deterministic order (pointer values are not): by the body's index in the world.
+    std::sort(list.begin(), list.end(), [](const btCollisionObject* a, const btCollisionObject* b) {
+      return a->getWorldArrayIndex() < b->getWorldArrayIndex();
+    });
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    RopeObject& rope = *ropes_[r];
+    rope.substep(list, h);
+    report_.contacts.insert(report_.contacts.end(), rope.contacts().begin(), rope.contacts().end());
+    report_.ropes.push_back(rope.lastStep());
+  }
+  if (callback_) callback_(report_);
+}
+
+}  // namespace rope::bullet

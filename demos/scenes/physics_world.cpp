@@ -1,0 +1,67 @@
+#include "demos/scenes/physics_world.h"
+
+#include "bullet_bridge/capsule_proxies.h"
+#include "render/rope_drawing.h"
+#include "render/world_extraction.h"
+
+namespace rope::demos {
+
+PhysicsWorld::PhysicsWorld(const btVector3& gravity)
+    : configuration_(std::make_unique<btDefaultCollisionConfiguration>()),
+      dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
+      broadphase_(std::make_unique<btDbvtBroadphase>()),
+      solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
+      world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
+                                                       configuration_.get())),
+      ropes_(std::make_unique<bullet::RopeWorld>(*world_)) {
+  world_->setGravity(gravity);
+}
+
+PhysicsWorld::~PhysicsWorld() {
+  ropes_.reset();  // takes its action and any remaining rope capsules out of the world
+  for (auto& body : bodies_) world_->removeRigidBody(body.get());
+}
+
+btRigidBody* PhysicsWorld::addBox(const btVector3& halfExtents, double mass, const btTransform& transform) {
+  shapes_.push_back(std::make_unique<btBoxShape>(halfExtents));
+  btCollisionShape* shape = shapes_.back().get();
+  btVector3 inertia(0, 0, 0);
+  if (mass > 0) shape->calculateLocalInertia(static_cast<btScalar>(mass), inertia);
+  btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), nullptr, shape, inertia);
+  info.m_startWorldTransform = transform;
+  info.m_friction = btScalar(0.5);
+  bodies_.push_back(std::make_unique<btRigidBody>(info));
+  world_->addRigidBody(bodies_.back().get());
+  return bodies_.back().get();
+}
+
+btRigidBody* PhysicsWorld::addBox(const btVector3& halfExtents, double mass, const btVector3& origin) {
+  btTransform transform;
+  transform.setIdentity();
+  transform.setOrigin(origin);
+  return addBox(halfExtents, mass, transform);
+}
+
+btRigidBody* PhysicsWorld::addGround(double height) {
+  shapes_.push_back(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), static_cast<btScalar>(height)));
+  btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shapes_.back().get());
+  info.m_friction = btScalar(0.5);
+  bodies_.push_back(std::make_unique<btRigidBody>(info));
+  world_->addRigidBody(bodies_.back().get());
+  return bodies_.back().get();
+}
+
+void PhysicsWorld::draw(render::Scene& scene) const {
+  render::ExtractionOptions options;
+  options.skip = [](const btCollisionObject& object) { return bullet::CapsuleProxies::ropeOf(object) != nullptr; };
+  render::extractWorld(*world_, meshes_, scene, options);
+}
+
+void drawRope(render::Scene& scene, const bullet::RopeObject& rope) {
+  render::RopeStyle style;
+  style.tube.radius = rope.rod().settings().radius;
+  style.tube.alternateSpanColours = true;
+  render::addRope(scene, rope.rod().knots(), rope.rod().controlPoints(), style);
+}
+
+}  // namespace rope::demos

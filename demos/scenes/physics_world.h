@@ -1,0 +1,53 @@
+#pragma once
+// A stock Bullet world for the rope scenes (and the tests and benchmarks that build them): default
+// collision configuration, dbvt broadphase, sequential-impulse solver and btDiscreteDynamicsWorld,
+// with a RopeWorld on top. Owns every body it creates; the ropes are owned by the scenes.
+
+#include <btBulletDynamicsCommon.h>
+
+#include <memory>
+#include <vector>
+
+#include "bullet_bridge/rope_world.h"
+#include "render/scene.h"
+#include "render/shape_mesh_cache.h"
+
+namespace rope::demos {
+
+class PhysicsWorld {
+ public:
+  explicit PhysicsWorld(const btVector3& gravity = btVector3(0, btScalar(-9.81), 0));
+  ~PhysicsWorld();
+  PhysicsWorld(const PhysicsWorld&) = delete;
+  PhysicsWorld& operator=(const PhysicsWorld&) = delete;
+
+  btDiscreteDynamicsWorld& world() { return *world_; }
+  const btDiscreteDynamicsWorld& world() const { return *world_; }
+  bullet::RopeWorld& ropes() { return *ropes_; }
+  const bullet::RopeWorld& ropes() const { return *ropes_; }
+
+  // A box of the given half extents (m) at `origin`; mass 0 makes it static. Friction 0.5.
+  btRigidBody* addBox(const btVector3& halfExtents, double mass, const btTransform& transform);
+  btRigidBody* addBox(const btVector3& halfExtents, double mass, const btVector3& origin);
+  // The static ground plane y = height.
+  btRigidBody* addGround(double height = 0.0);
+
+  // Draws the rigid bodies (planes as the ground), leaving out the ropes' capsules.
+  void draw(render::Scene& scene) const;
+
+ private:
+  std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
+  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btDbvtBroadphase> broadphase_;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  std::unique_ptr<bullet::RopeWorld> ropes_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+  mutable render::ShapeMeshCache meshes_;
+};
+
+// A rope's drawing style in the Bullet scenes: the tube of the rope's radius, spans in alternating colours.
+void drawRope(render::Scene& scene, const bullet::RopeObject& rope);
+
+}  // namespace rope::demos

@@ -1,0 +1,292 @@
+// Scenario tests of ropes as Bullet world objects (bullet_bridge/rope_world.h, rope_object.h):
+// resting contact, a thin bar, a fast impact, Newton's third law, two-way coupling, substeps, bad input.
+#include "bullet_bridge/rope_world.h"
+
+#include <gtest/gtest.h>
+
+#include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "demos/scenes/drape_scene.h"
+#include "demos/scenes/physics_world.h"
+#include "rope/common/error.h"
+
+namespace rope::bullet {
+namespace {
+
+constexpr double kStep = 1.0 / 240.0;
+
+RodSettings limpRope(double radius = 0.01) {
+  RodSettings rod = demos::DrapeSceneSettings::defaultRod();
+  rod.radius = radius;
+  return rod;
+}
+
+void stepWorld(btDiscreteDynamicsWorld& world, int steps) {
+  for (int i = 0; i < steps; ++i) world.stepSimulation(btScalar(kStep), 1, btScalar(kStep));
+}
+
+double lowestPoint(const Rod& rod) {
+  double lowest = std::numeric_limits<double>::max();
+  for (int i = 0; i <= 200; ++i) {
+    const double s = rod.beginParameter() + (rod.endParameter() - rod.beginParameter()) * i / 200.0;
+    lowest = std::min(lowest, rod.position(std::min(s, rod.endParameter())).y());
+  }
+  return lowest;
+}
+
+// A rope dropped 0.2 m onto a static box comes to rest on its top face: resting penetration below
+// 10% of the radius, and no point of the rope ever below the top face minus the radius.
+TEST(RopeWorldScenario, RopeDroppedOntoBoxComesToRestOnIt) {
+  demos::DrapeScene scene{demos::DrapeSceneSettings{}};
+  const double radius = scene.rope().rod().settings().radius;
+  double impactPenetration = 0.0;
+  double restingPenetration = 0.0;
+  double lowest = std::numeric_limits<double>::max();
+  const int steps = static_cast<int>(std::lround(4.0 / kStep));
+  for (int i = 0; i < steps; ++i) {
+    const demos::StepMeasurements m = scene.step();
+    impactPenetration = std::max(impactPenetration, *m.maxPenetration);
+    if (i >= steps - 240) restingPenetration = std::max(restingPenetration, *m.maxPenetration);
+    lowest = std::min(lowest, scene.lowestPoint());
+  }
+  EXPECT_LT(restingPenetration, 0.1 * radius);
+  EXPECT_GT(lowest, 0.2);  // the box's top face: the centre line never went through it
+  EXPECT_NEAR(scene.lowestPoint(), 0.2 + radius, 0.1 * radius);
+  EXPECT_LT(scene.rope().rod().momentum().norm(), 1e-3);  // at rest
+  EXPECT_GT(scene.rope().lastStep().contacts, 0);
+  RecordProperty("resting_penetration_m", std::to_string(restingPenetration));
+  RecordProperty("impact_penetration_m", std::to_string(impactPenetration));
+  std::printf("drop on box: resting penetration %.3g m, impact %.3g m (radius %.3g m)\n", restingPenetration,
+              impactPenetration, radius);
+}
+
+// Dropped from 1 m above it, the rope drapes over a 2 mm bar: both halves hang down and it is still
+// there after 5 s.
+TEST(RopeWorldScenario, RopeDrapesOverThinBarAndStays) {
+  demos::DrapeScene scene{demos::DrapeSceneSettings::thinBar()};
+  const int steps = static_cast<int>(std::lround(6.0 / kStep));
+  double deepest = 0.0;
+  for (int i = 0; i < steps; ++i) deepest = std::max(deepest, *scene.step().maxPenetration);
+  const Rod& rod = scene.rope().rod();
+  const double radius = rod.settings().radius;
+  // Still on the bar: the highest point sits on it, both ends hang below it.
+  EXPECT_NEAR(scene.highestPoint(), 1.0 + radius, 0.3 * radius);
+  EXPECT_LT(rod.position(rod.beginParameter()).y(), 0.8);
+  EXPECT_LT(rod.position(rod.endParameter()).y(), 0.8);
+  EXPECT_GT(scene.rope().lastStep().contacts, 0);
+  EXPECT_LT(deepest, 0.5 * radius);  // never deeper than half the radius: no tunnelling
+  std::printf("thin bar: deepest penetration %.3g m, top %.4f m\n", deepest, scene.highestPoint());
+}
+
+// A rope moving at 20 m/s (8.3 cm per step, more than the plate and the rope together) hits a 1 cm
+// plate and stays on the near side.
+TEST(RopeWorldScenario, FastRopeDoesNotPassThroughThinPlate) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  physics.addBox(btVector3(0.5, 0.005, 0.5), 0.0, btVector3(0, 0, 0));
+  RodSettings rod = limpRope();
+  rod.gravity = Vec3::Zero();
+  rod.restLength = 0.6;
+  RopeObject rope(Rod::fromSegment(rod, Vec3(-0.3, 0.3, 0.0), Vec3(0.3, 0.3, 0.0)));
+  rope.rod().setVelocities(PointList(static_cast<std::size_t>(rope.rod().controlPointCount()), Vec3(0, -20, 0)));
+  physics.ropes().addRope(rope);
+  double lowest = 1.0;
+  for (int i = 0; i < 240; ++i) {
+    stepWorld(physics.world(), 1);
+    ASSERT_TRUE(rope.lastStep().ok);
+    lowest = std::min(lowest, lowestPoint(rope.rod()));
+  }
+  EXPECT_GT(lowest, 0.005);  // the centre line never crossed the plate's top face
+  EXPECT_GT(rope.rod().momentum().y(), -1e-6);  // stopped (or bounced), not falling through
+  std::printf("fast plate: lowest centre-line point %.4f m (plate top 0.005 m)\n", lowest);
+}
+
+// No gravity, no ground: a rope hits a free box; the impulses on the box are exactly the opposite of
+// the forces the rope felt, so total linear momentum is conserved to round-off.
+TEST(RopeWorldScenario, RopeAndBoxCollidingConserveLinearMomentum) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  btRigidBody* box = physics.addBox(btVector3(0.1, 0.1, 0.1), 2.0, btVector3(0.05, 0, 0));
+  box->setActivationState(DISABLE_DEACTIVATION);  // sleeping zeroes velocities
+  box->setLinearVelocity(btVector3(0, 0.5, 0));
+  RodSettings rod = limpRope();
+  rod.gravity = Vec3::Zero();
+  rod.massDamping = 0.0;  // absolute-velocity damping would take momentum out
+  // Knot removal in the rod changes the velocity field (and so the momentum) by up to
+  // maxRemovalVelocityError; this test checks the coupling, so the knot vector stays fixed.
+  rod.adaptive = false;
+  rod.restLength = 0.8;
+  RopeObject rope(Rod::fromSegment(rod, Vec3(-0.4, 0.4, 0.0), Vec3(0.4, 0.4, 0.0)));
+  rope.rod().setVelocities(PointList(static_cast<std::size_t>(rope.rod().controlPointCount()), Vec3(0, -3, 0)));
+  physics.ropes().addRope(rope);
+  auto total = [&]() -> Vec3 {
+    const btVector3 p = box->getLinearVelocity() / box->getInvMass();
+    return rope.rod().momentum() + Vec3(p.x(), p.y(), p.z());
+  };
+  const Vec3 initial = total();
+  double worst = 0.0;
+  int contactSteps = 0;
+  for (int i = 0; i < 360; ++i) {
+    stepWorld(physics.world(), 1);
+    ASSERT_TRUE(rope.lastStep().ok);
+    contactSteps += rope.lastStep().contacts > 0 ? 1 : 0;
+    worst = std::max(worst, (total() - initial).norm() / initial.norm());
+  }
+  EXPECT_GT(contactSteps, 5);
+  EXPECT_LT(box->getLinearVelocity().y(), 0.25);  // slowed from 0.5 m/s by the rope that hit it
+  EXPECT_LT(worst, 1e-9);
+  std::printf("momentum: worst relative drift %.3g over %d contact steps\n", worst, contactSteps);
+}
+
+// A box sliding into a rope stretched between two pins is stopped by it (and thrown back).
+TEST(RopeWorldScenario, BoxSlidingIntoPinnedRopeIsStopped) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  btRigidBody* box = physics.addBox(btVector3(0.05, 0.05, 0.05), 1.0, btVector3(0, 0, -0.3));
+  box->setLinearVelocity(btVector3(0, 0, 3));
+  RodSettings rod = limpRope(0.005);
+  rod.gravity = Vec3::Zero();
+  rod.restLength = 1.0;
+  RopeObject rope(Rod::fromSegment(rod, Vec3(-0.5, 0, 0), Vec3(0.5, 0, 0)));
+  physics.ropes().addRope(rope);
+  rope.attachToPoint(rope.rod().beginParameter(), btVector3(-0.5, 0, 0));
+  rope.attachToPoint(rope.rod().endParameter(), btVector3(0.5, 0, 0));
+  double furthest = -1.0;
+  for (int i = 0; i < 480; ++i) {
+    stepWorld(physics.world(), 1);
+    ASSERT_TRUE(rope.lastStep().ok);
+    furthest = std::max(furthest, static_cast<double>(box->getCenterOfMassPosition().z()));
+  }
+  EXPECT_LT(furthest, 0.3);  // stopped well before passing the rope
+  EXPECT_LT(box->getLinearVelocity().z(), 0.0);  // and thrown back
+  EXPECT_LT(box->getCenterOfMassPosition().z(), 0.0);
+  std::printf("two-way: box front reached z = %.3f m, final v_z = %.3f m/s\n", furthest + 0.05,
+              static_cast<double>(box->getLinearVelocity().z()));
+}
+
+// The user steps with 1/60 s frames and 4 substeps: the rope steps once per substep (240 Hz) and
+// rests on the box as with single steps.
+TEST(RopeWorldScenario, WorksUnchangedWithSubsteps) {
+  demos::DrapeScene scene{demos::DrapeSceneSettings{}};
+  long substeps = 0;
+  scene.physics().ropes().setSubstepCallback([&](const ContactReport& report) {
+    ++substeps;
+    EXPECT_DOUBLE_EQ(report.timeStep, btScalar(1.0 / 240.0));
+  });
+  for (int frame = 0; frame < 4 * 60; ++frame) {
+    scene.physics().world().stepSimulation(btScalar(1.0 / 60.0), 4, btScalar(1.0 / 240.0));
+  }
+  EXPECT_EQ(substeps, 4 * 4 * 60);
+  const double radius = scene.rope().rod().settings().radius;
+  EXPECT_NEAR(scene.lowestPoint(), 0.2 + radius, 0.1 * radius);
+  EXPECT_LT(scene.rope().lastStep().maxPenetration, 0.1 * radius);
+}
+
+TEST(RopeWorld, AddAndRemoveAreSymmetric) {
+  demos::PhysicsWorld physics;
+  const int before = physics.world().getNumCollisionObjects();
+  RopeObject rope(Rod::fromSegment(limpRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)));
+  physics.ropes().addRope(rope);
+  EXPECT_TRUE(physics.ropes().contains(rope));
+  EXPECT_EQ(physics.world().getNumCollisionObjects(), before + rope.proxies().size());
+  stepWorld(physics.world(), 10);
+  physics.ropes().removeRope(rope);
+  EXPECT_FALSE(physics.ropes().contains(rope));
+  EXPECT_EQ(rope.world(), nullptr);
+  EXPECT_EQ(physics.world().getNumCollisionObjects(), before);
+  physics.ropes().addRope(rope);  // and back again
+  stepWorld(physics.world(), 10);
+  EXPECT_EQ(physics.world().getNumCollisionObjects(), before + rope.proxies().size());
+}
+
+TEST(RopeWorld, BadInputThrowsAndChangesNothing) {
+  demos::PhysicsWorld physics;
+  RopeObject rope(Rod::fromSegment(limpRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)));
+  RopeObject stranger(Rod::fromSegment(limpRope(), Vec3(0, 2, 0), Vec3(1, 2, 0)));
+  physics.ropes().addRope(rope);
+  const int objects = physics.world().getNumCollisionObjects();
+  const PointList points = rope.rod().controlPoints();
+
+  EXPECT_THROW(physics.ropes().addRope(rope), InvalidArgument);       // twice
+  EXPECT_THROW(physics.ropes().removeRope(stranger), InvalidArgument); // never added
+  demos::PhysicsWorld other;
+  EXPECT_THROW(other.ropes().addRope(rope), InvalidArgument);          // in another world
+
+  // A body that is not in the world.
+  btBoxShape shape(btVector3(0.1, 0.1, 0.1));
+  btRigidBody outsider(1.0, nullptr, &shape);
+  EXPECT_THROW(rope.attachToBody(0.5, outsider, btVector3(0, 0, 0)), InvalidArgument);
+  btRigidBody* inside = physics.addBox(btVector3(0.1, 0.1, 0.1), 1.0, btVector3(3, 3, 3));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(rope.attachToBody(nan, *inside, btVector3(0, 0, 0)), InvalidArgument);
+  EXPECT_THROW(rope.attachToBody(5.0, *inside, btVector3(0, 0, 0)), InvalidArgument);
+  EXPECT_THROW(rope.attachToBody(0.5, *inside, btVector3(0, btScalar(nan), 0)), InvalidArgument);
+  AttachmentSettings badAttachment;
+  badAttachment.stiffness = -1.0;
+  EXPECT_THROW(rope.attachToBody(0.5, *inside, btVector3(0, 0, 0), badAttachment), InvalidArgument);
+  EXPECT_THROW(rope.attachToPoint(0.5, btVector3(btScalar(nan), 0, 0)), InvalidArgument);
+  EXPECT_THROW(rope.setAttachmentTarget(99, btVector3(0, 0, 0)), InvalidArgument);
+  EXPECT_THROW(rope.removeAttachment(99), InvalidArgument);
+  const int pin = rope.attachToPoint(0.0, btVector3(0, 1, 0));
+  EXPECT_THROW(rope.setAttachmentTarget(pin, btVector3(0, btScalar(nan), 0)), InvalidArgument);
+  EXPECT_THROW(stranger.attachToBody(0.5, *inside, btVector3(0, 0, 0)), InvalidArgument);  // rope in no world
+  BulletRopeSettings bad;
+  bad.contactStiffness = nan;
+  EXPECT_THROW(RopeObject(Rod::fromSegment(limpRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)), bad), InvalidArgument);
+  bad = BulletRopeSettings();
+  bad.capsulesPerSpan = 0;
+  EXPECT_THROW(RopeObject(Rod::fromSegment(limpRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)), bad), InvalidArgument);
+
+  EXPECT_EQ(rope.attachments().size(), 1u);
+  EXPECT_EQ(physics.world().getNumCollisionObjects(), objects + 1);  // + the box added above
+  EXPECT_EQ(rope.rod().controlPoints(), points);
+  EXPECT_TRUE(physics.ropes().contains(rope));
+  EXPECT_EQ(stranger.world(), nullptr);
+}
+
+// A body whose transform became NaN is skipped (and reported); the rope stays finite.
+TEST(RopeWorld, NonFiniteBodyIsSkippedAndReported) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  btRigidBody* box = physics.addBox(btVector3(0.1, 0.1, 0.1), 0.0, btVector3(0.5, 1, 0));
+  RopeObject rope(Rod::fromSegment(limpRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)));
+  physics.ropes().addRope(rope);
+  stepWorld(physics.world(), 2);
+  ASSERT_GT(rope.lastStep().contacts, 0);
+  btTransform broken = box->getWorldTransform();
+  broken.setOrigin(btVector3(std::numeric_limits<btScalar>::quiet_NaN(), 1, 0));
+  box->setWorldTransform(broken);
+  rope.substep({box}, kStep);  // as the action would, with the broken body as a candidate
+  EXPECT_TRUE(rope.lastStep().ok);
+  EXPECT_EQ(rope.lastStep().skippedBodies, 1);
+  EXPECT_EQ(rope.lastStep().contacts, 0);
+  for (const Vec3& p : rope.rod().controlPoints()) EXPECT_TRUE(p.allFinite());
+  box->setWorldTransform(btTransform::getIdentity());
+}
+
+// Works in a btSoftRigidDynamicsWorld next to a soft body (Bullet's own soft-rigid handling does not
+// see the rope's capsules as obstacles).
+TEST(RopeWorldScenario, WorksInSoftRigidWorld) {
+  btSoftBodyRigidBodyCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher(&configuration);
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btSoftRigidDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
+  world.setGravity(btVector3(0, -9.81, 0));
+  btStaticPlaneShape groundShape(btVector3(0, 1, 0), 0);
+  btRigidBody ground(0, nullptr, &groundShape);
+  world.addRigidBody(&ground);
+  {
+    RopeWorld ropes(world);
+    RopeObject rope(Rod::fromSegment(limpRope(), Vec3(-0.5, 0.3, 0), Vec3(0.5, 0.3, 0)));
+    ropes.addRope(rope);
+    for (int i = 0; i < 480; ++i) world.stepSimulation(btScalar(kStep), 1, btScalar(kStep));
+    EXPECT_TRUE(rope.lastStep().ok);
+    EXPECT_NEAR(lowestPoint(rope.rod()), 0.01, 0.001);
+  }
+  world.removeRigidBody(&ground);
+}
+
+}  // namespace
+}  // namespace rope::bullet

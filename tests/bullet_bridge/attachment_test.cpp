@@ -1,0 +1,171 @@
+// Attachments (bullet_bridge/attachment.h, RopeObject::attachTo*): the crane (a 10 kg box on a
+// 0.01 kg/m rope, mass ratio 1000:1), lifting by the top pin, removal at run time, and Newton's third
+// law through a body attachment.
+#include "bullet_bridge/attachment.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "bullet_bridge/rope_world.h"
+#include "demos/scenes/crane_scene.h"
+#include "demos/scenes/physics_world.h"
+#include "rope/common/error.h"
+
+namespace rope::bullet {
+namespace {
+
+constexpr double kStep = 1.0 / 240.0;
+
+int stepsFor(double seconds) { return static_cast<int>(std::lround(seconds / kStep)); }
+
+// Static crane for 60 s at 1/240 s: the strain is W / EA (within 2%), the attachment's offset
+// (force / stiffness) does not drift, and the box is at rest.
+TEST(AttachmentScenario, CraneHoldsTenKilogramBoxFor60Seconds) {
+  demos::CraneSceneSettings settings;
+  settings.liftStart = 1e9;  // never lift
+  demos::CraneScene scene(settings);
+  double gapAt10 = 0.0, yAt10 = 0.0;
+  const int steps = stepsFor(60.0);
+  for (int i = 1; i <= steps; ++i) {
+    scene.step();
+    if (i == stepsFor(10.0)) {
+      gapAt10 = scene.attachmentGap();
+      yAt10 = scene.box().getCenterOfMassPosition().y();
+    }
+  }
+  const double expected = scene.expectedStrain();
+  const double strain = scene.rope().rod().maxStrain();
+  EXPECT_NEAR(strain, expected, 0.02 * expected);
+  EXPECT_NEAR(scene.attachmentGap(), gapAt10, 1e-6);  // no drift
+  EXPECT_LT(scene.attachmentGap(), 0.005);            // a few millimetres of spring stretch
+  EXPECT_NEAR(scene.box().getCenterOfMassPosition().y(), yAt10, 1e-6);
+  // At rest. Between substeps the body's velocity holds the rope's last impulse, which Bullet's next
+  // velocity update cancels against gravity before it moves the body: v = -g h, position constant.
+  EXPECT_NEAR(scene.box().getLinearVelocity().y(), 9.81 * kStep, 1e-4);
+  // The box hangs where the stretched rope puts it: top - L (1 + strain) - gap - half extent.
+  EXPECT_NEAR(scene.box().getCenterOfMassPosition().y(),
+              settings.topHeight - settings.ropeLength * (1.0 + strain) - scene.attachmentGap() - 0.1, 2e-4);
+  std::printf("crane: strain %.6f vs W/EA %.6f (%.2f%%), attachment gap %.3g m (drift %.3g m)\n", strain, expected,
+              100.0 * (strain / expected - 1.0), scene.attachmentGap(), scene.attachmentGap() - gapAt10);
+}
+
+// Raising the rope's top pin by 0.3 m raises the box by 0.3 m.
+TEST(AttachmentScenario, LiftingTopPinLiftsTheBox) {
+  demos::CraneSceneSettings settings;
+  settings.liftStart = 1.0;
+  settings.liftHeight = 0.3;
+  settings.liftDuration = 2.0;
+  demos::CraneScene scene(settings);
+  for (int i = 0; i < stepsFor(1.0); ++i) scene.step();
+  const double before = scene.box().getCenterOfMassPosition().y();
+  for (int i = 0; i < stepsFor(5.0); ++i) scene.step();
+  EXPECT_NEAR(scene.box().getCenterOfMassPosition().y() - before, 0.3, 0.002);
+  EXPECT_NEAR(scene.box().getLinearVelocity().y(), 9.81 * kStep, 0.01);
+}
+
+// Strain of the rod's Green–Lagrange law ([A] eq. 11: E = (EA/8) int (gamma^2 - 1)^2, so the tension
+// is T = EA eps (1 + eps)(1 + eps/2)) under tension T, by Newton's method from T / EA.
+double greenLagrangeStrain(double tension, double axialStiffness) {
+  const double target = tension / axialStiffness;
+  double eps = target;
+  for (int i = 0; i < 50; ++i) {
+    const double f = eps * (1.0 + eps) * (1.0 + 0.5 * eps) - target;
+    const double df = 1.0 + 3.0 * eps + 1.5 * eps * eps;
+    eps -= f / df;
+  }
+  return eps;
+}
+
+// Mass ratio 10000:1 (100 kg on the same 0.01 kg rope) is stable too. At 3.9% strain the difference
+// between W / EA and the rod's nonlinear law (5%) matters, so the strain is checked against the law.
+TEST(AttachmentScenario, HundredKilogramBoxOnLightRopeIsStable) {
+  demos::CraneSceneSettings settings;
+  settings.liftStart = 1e9;
+  settings.boxMass = 100.0;
+  demos::CraneScene scene(settings);
+  for (int i = 0; i < stepsFor(10.0); ++i) scene.step();
+  const double linear = scene.expectedStrain();
+  const double expected = greenLagrangeStrain(linear * scene.rope().rod().settings().axialStiffness(),
+                                              scene.rope().rod().settings().axialStiffness());
+  EXPECT_NEAR(scene.rope().rod().maxStrain(), expected, 0.01 * expected);
+  EXPECT_NEAR(scene.box().getLinearVelocity().y(), 9.81 * kStep, 1e-3);
+  std::printf("100 kg crane: strain %.6f vs W/EA %.6f\n", scene.rope().rod().maxStrain(), expected);
+}
+
+// Removing the body attachment at run time lets the box fall.
+TEST(AttachmentScenario, RemovedAttachmentReleasesTheBox) {
+  demos::PhysicsWorld physics;
+  btRigidBody* box = physics.addBox(btVector3(0.1, 0.1, 0.1), 1.0, btVector3(0, 0.9, 0));
+  box->setActivationState(DISABLE_DEACTIVATION);
+  RodSettings rod = demos::CraneSceneSettings::defaultRod();
+  rod.restLength = 1.0;
+  RopeObject rope(Rod::fromSegment(rod, Vec3(0, 2, 0), Vec3(0, 1, 0)));
+  physics.ropes().addRope(rope);
+  rope.attachToPoint(0.0, btVector3(0, 2, 0));
+  const int hook = rope.attachToBody(1.0, *box, btVector3(0, 0.1, 0));
+  for (int i = 0; i < stepsFor(1.0); ++i) physics.world().stepSimulation(btScalar(kStep), 1, btScalar(kStep));
+  EXPECT_NEAR(box->getCenterOfMassPosition().y(), 0.9, 0.01);
+  EXPECT_GT(rope.attachments()[1].lastForce.y(), -10.0);
+  EXPECT_LT(rope.attachments()[1].lastForce.y(), -9.0);  // the rope carries the box's weight (9.81 N)
+  rope.removeAttachment(hook);
+  EXPECT_EQ(rope.attachments().size(), 1u);
+  for (int i = 0; i < stepsFor(0.2); ++i) physics.world().stepSimulation(btScalar(kStep), 1, btScalar(kStep));
+  EXPECT_LT(box->getCenterOfMassPosition().y(), 0.9 - 0.5 * 9.81 * 0.2 * 0.2 + 0.02);
+}
+
+// No gravity: a rope attached to a free box and thrown away from it drags it along; linear momentum
+// of rope + box is conserved to round-off (the body gets exactly the opposite impulse).
+TEST(AttachmentScenario, BodyAttachmentConservesLinearMomentum) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  btRigidBody* box = physics.addBox(btVector3(0.1, 0.1, 0.1), 1.0, btVector3(0, -0.1, 0));
+  box->setActivationState(DISABLE_DEACTIVATION);
+  RodSettings rod = demos::CraneSceneSettings::defaultRod();
+  rod.gravity = Vec3::Zero();
+  rod.massDamping = 0.0;
+  rod.adaptive = false;  // see RopeAndBoxCollidingConserveLinearMomentum
+  rod.restLength = 1.0;
+  RopeObject rope(Rod::fromSegment(rod, Vec3(0, 0, 0), Vec3(0, 1, 0)));
+  rope.rod().setVelocities(PointList(static_cast<std::size_t>(rope.rod().controlPointCount()), Vec3(0.3, 2, 0)));
+  physics.ropes().addRope(rope);
+  rope.attachToBody(0.0, *box, btVector3(0, 0.1, 0));
+  auto total = [&]() -> Vec3 {
+    const btVector3 p = box->getLinearVelocity() / box->getInvMass();
+    return rope.rod().momentum() + Vec3(p.x(), p.y(), p.z());
+  };
+  const Vec3 initial = total();
+  double worst = 0.0;
+  for (int i = 0; i < 480; ++i) {
+    physics.world().stepSimulation(btScalar(kStep), 1, btScalar(kStep));
+    ASSERT_TRUE(rope.lastStep().ok);
+    worst = std::max(worst, (total() - initial).norm() / initial.norm());
+  }
+  EXPECT_GT(box->getLinearVelocity().y(), 0.005);  // dragged along
+  EXPECT_LT(worst, 1e-9);
+  std::printf("attachment momentum: worst relative drift %.3g\n", worst);
+}
+
+TEST(Attachment, SettingsAreValidated) {
+  AttachmentSettings settings;
+  EXPECT_NO_THROW(settings.validate());
+  settings.stiffness = 0.0;
+  EXPECT_THROW(settings.validate(), InvalidArgument);
+  settings = AttachmentSettings();
+  settings.damping = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(settings.validate(), InvalidArgument);
+}
+
+// The rope side of a body attachment in Rod::addSpring form: at the body point and at rest it is zero;
+// its end-of-step force is -k (x_new - p_new) for a rope that moved by h u_new.
+TEST(Attachment, SpringMatchesTheSpringLaw) {
+  const double k = 1e4, c = 10.0, h = 0.01;
+  const Vec3 x(0, 1, 0), p(0, 1.001, 0), u(0.1, 0, 0), vp(0, -0.2, 0);
+  const ContactSpring spring = attachmentSpring(k, c, x, p, u, vp, h);
+  const Vec3 uNew(0.05, 0.3, 0);
+  const Vec3 expected = -k * ((x + h * uNew) - (p + h * vp)) - c * (uNew - vp);
+  EXPECT_LT((endOfStepForce(spring, u, uNew, h) - expected).norm(), 1e-9);
+}
+
+}  // namespace
+}  // namespace rope::bullet

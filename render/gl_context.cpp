@@ -65,3 +65,9 @@ void GlContext::makeCurrent() {
 }
 
 }  // namespace rope::render
+
+// OSMesa keeps the framebuffers that OSMesaMakeCurrent creates in a process-wide list (one per
+// distinct size, reused) that is never freed, which LeakSanitizer reports at exit from every
+// program that renders. This tells it to ignore allocations made inside libOSMesa, nothing else.
+// Weak, so a program's own suppression list takes precedence; without a sanitizer it is unused.
+extern "C" __attribute__((weak, used)) const char* __lsan_default_suppressions() { return "leak:libOSMesa.so\n"; }

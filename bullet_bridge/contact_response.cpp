@@ -32,9 +32,8 @@ ContactSpring contactSpring(const ContactLaw& law, double distance, const Vec3& 
 }
 
 bool contactActive(double distance, const Vec3& normal, const Vec3& ropeVelocity, const Vec3& bodyVelocity,
-                   const Vec3& gravity, double h) {
-  const double predicted = distance + h * normal.dot(ropeVelocity - bodyVelocity) + h * h * normal.dot(gravity);
-  return predicted < 0.0;
+                   double h) {
+  return distance < 0.0 || distance + h * normal.dot(ropeVelocity - bodyVelocity) < 0.0;
 }
 
 Vec3 endOfStepForce(const ContactSpring& spring, const Vec3& u, const Vec3& uNew, double h) {

@@ -40,10 +40,12 @@ struct ContactSpring {
 ContactSpring contactSpring(const ContactLaw& law, double distance, const Vec3& normal, const Vec3& ropeVelocity,
                             const Vec3& bodyVelocity, double h);
 
-// Whether a contact acts in this step: the gap is predicted to be closed at its end
-// (d + h n.(u - v_b) + h^2 n.g < 0, g the rope's gravity).
-bool contactActive(double distance, const Vec3& normal, const Vec3& ropeVelocity, const Vec3& bodyVelocity,
-                   const Vec3& gravity, double h);
+// Whether a contact acts in this step: penetrating now, or its gap is predicted to close within the
+// step at the current relative velocity (d + h n.(u - v_b) < 0). A speculative contact (d > 0) that
+// acts starts from f0 = -k d n, i.e. it holds the rope at the surface rather than before it. Gravity
+// is left out of the prediction on purpose: it would activate the many near-touching contacts of a
+// resting rope with that small pull, which inflates their friction bound.
+bool contactActive(double distance, const Vec3& normal, const Vec3& ropeVelocity, const Vec3& bodyVelocity, double h);
 
 // The force the rope felt over the step (see the header comment), from its velocity at s before
 // (u) and after (uNew) the step.

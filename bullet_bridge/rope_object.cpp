@@ -167,7 +167,6 @@ void RopeObject::queueSpring(double s, double weight, const ContactSpring& sprin
 void RopeObject::gatherContacts(const std::vector<const btCollisionObject*>& candidates, double h) {
   const double margin = settings_.speculativeMargin;
   const btScalar pad = static_cast<btScalar>(rod_.settings().radius + margin);
-  const Vec3 gravity = rod_.settings().gravity;
   for (const btCollisionObject* object : candidates) {
     if (!isFinite(object->getWorldTransform())) {
       ++lastStep_.skippedBodies;  // a NaN body must not poison the rope
@@ -187,6 +186,7 @@ void RopeObject::gatherContacts(const std::vector<const btCollisionObject*>& can
         continue;
       }
     }
+    int previousEndContact = -2;  // capsule whose last contact with this body was at its end (t = 1)
     for (int i = 0; i < proxies_->size(); ++i) {
       const Capsule capsule = proxies_->capsule(i);
       const CapsuleProxy& capsuleProxy = proxies_->proxy(i);
@@ -211,8 +211,13 @@ void RopeObject::gatherContacts(const std::vector<const btCollisionObject*>& can
       }
       const CapsuleProxy& proxy = proxies_->proxy(i);
       if (attachedNear(*object, proxy.s0, proxy.s1)) continue;
+      bool endContact = false;
       for (const Contact& contact : scratch_) {
         const double t = std::clamp(static_cast<double>(contact.t), 0.0, 1.0);
+        // Neighbouring capsules share their end point: a contact there counts once (a rope lying
+        // along a face touches it at the capsules' ends, where GJK puts a parallel segment's contact).
+        if (t <= 0.0 && previousEndContact == i - 1) continue;
+        endContact = endContact || t >= 1.0;
         const double s = std::clamp(proxy.s0 + t * (proxy.s1 - proxy.s0), proxy.s0, proxy.s1);
         const Vec3 normal = toVec(contact.normal);
         const double distance = static_cast<double>(contact.distance);
@@ -227,7 +232,7 @@ void RopeObject::gatherContacts(const std::vector<const btCollisionObject*>& can
         record.normal = contact.normal;
         record.depth = -distance;
         lastStep_.maxPenetration = std::max(lastStep_.maxPenetration, -distance);
-        if (contactActive(distance, normal, u, bodyVelocity, gravity, h)) {
+        if (contactActive(distance, normal, u, bodyVelocity, h)) {
           ContactLaw law;
           law.stiffness = settings_.contactStiffness;
           law.damping = settings_.contactDamping;
@@ -260,6 +265,7 @@ void RopeObject::gatherContacts(const std::vector<const btCollisionObject*>& can
         }
         contacts_.push_back(record);
       }
+      if (endContact) previousEndContact = i;
     }
   }
 }

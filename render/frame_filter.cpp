@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "rope/common/error.h"
 
@@ -50,20 +51,16 @@ void copyRow(const Source& source, int y, std::uint8_t* target) {
   }
 }
 
+// Filters an interior pixel whose 3x3 neighbourhood holds geometry; target already holds the
+// pixel's own colour and is overwritten only where an edge is found.
 void filterPixel(const Source& source, int x, int y, std::uint8_t* target) {
   const std::uint8_t* centre = source.at(x, y);
-  target[0] = centre[0];
-  target[1] = centre[1];
-  target[2] = centre[2];
   const std::size_t stride = static_cast<std::size_t>(source.width) * 4;
   // Rows are bottom-up in memory: image row y - 1 (north) is one stride further on.
   const std::uint8_t* nw = centre + stride - 4;
   const std::uint8_t* ne = centre + stride + 4;
   const std::uint8_t* sw = centre - stride - 4;
   const std::uint8_t* se = centre - stride + 4;
-  const std::uint8_t* n = centre + stride;
-  const std::uint8_t* s = centre - stride;
-  if ((centre[3] | nw[3] | ne[3] | sw[3] | se[3] | n[3] | s[3] | centre[-1] | centre[7]) == 0) return;
   const int lc = lumaOf(centre), lnw = lumaOf(nw), lne = lumaOf(ne), lsw = lumaOf(sw), lse = lumaOf(se);
   const int lo = std::min({lc, lnw, lne, lsw, lse});
   const int hi = std::max({lc, lnw, lne, lsw, lse});
@@ -106,15 +103,22 @@ void convertFrame(const std::uint8_t* rgba, int width, int height, bool antiAlia
   copyRow(source, 0, out.pixel(0, 0));
   copyRow(source, height - 1, out.pixel(0, height - 1));
   auto filterRows = [&source, &out, width](int begin, int end) {
+    // Alpha of each column ORed over the rows y - 1, y, y + 1: simple loops the compiler
+    // vectorises, so that the common case (no geometry nearby) costs a copy and a few byte tests.
+    std::vector<std::uint8_t> vertical(static_cast<std::size_t>(width));
     for (int y = begin; y < end; ++y) {
       std::uint8_t* target = out.pixel(0, y);
-      const std::uint8_t* first = source.at(0, y);
-      const std::uint8_t* last = source.at(width - 1, y);
-      for (int k = 0; k < 3; ++k) {
-        target[k] = first[k];
-        target[3 * (width - 1) + k] = last[k];
+      copyRow(source, y, target);
+      const std::uint8_t* above = source.at(0, y - 1);
+      const std::uint8_t* row = source.at(0, y);
+      const std::uint8_t* below = source.at(0, y + 1);
+      for (int x = 0; x < width; ++x) {
+        vertical[static_cast<std::size_t>(x)] = above[4 * x + 3] | row[4 * x + 3] | below[4 * x + 3];
       }
-      for (int x = 1; x + 1 < width; ++x) filterPixel(source, x, y, target + 3 * x);
+      for (int x = 1; x + 1 < width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(x);
+        if ((vertical[i - 1] | vertical[i] | vertical[i + 1]) != 0) filterPixel(source, x, y, target + 3 * x);
+      }
     }
   };
   // Large frames are split between this thread and one helper: the GL worker threads are idle

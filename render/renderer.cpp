@@ -63,13 +63,12 @@ out vec4 fragColour;
 
 float shadowFactor(vec3 p) {
   if (uShadows == 0 || p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
-  // Four bilinear comparison taps on a rotated grid: 16 texels, a soft penumbra for the cost of 4.
-  float r = 1.6 * uShadowTexel;
-  float s = texture(uShadowMap, vec3(p.xy + vec2(-0.4, -1.0) * r, p.z));
-  s += texture(uShadowMap, vec3(p.xy + vec2(1.0, -0.4) * r, p.z));
-  s += texture(uShadowMap, vec3(p.xy + vec2(0.4, 1.0) * r, p.z));
-  s += texture(uShadowMap, vec3(p.xy + vec2(-1.0, 0.4) * r, p.z));
-  return 0.25 * s;
+  // Two bilinear comparison taps (8 texels): a soft penumbra. Each tap costs llvmpipe several ms
+  // per 720p frame, and four looked no different at 1024 texels.
+  float r = 1.2 * uShadowTexel;
+  float s = texture(uShadowMap, vec3(p.xy + vec2(-1.0, -0.35) * r, p.z));
+  s += texture(uShadowMap, vec3(p.xy + vec2(1.0, 0.35) * r, p.z));
+  return 0.5 * s;
 }
 
 void finish(vec3 linearColour, vec3 world) {

@@ -39,6 +39,11 @@ struct ConstraintRows {
 
 class ConstrainedSolver {
  public:
+  // Only scratch space lives here: copies start empty (Eigen's LLT is not meant to be copied before
+  // its first compute()).
+  ConstrainedSolver() = default;
+  ConstrainedSolver(const ConstrainedSolver&) {}
+  ConstrainedSolver& operator=(const ConstrainedSolver&) { return *this; }
   // factor: factorised 3n x 3n system; x: right-hand side r on entry, dv on return.
   // Returns false if the Schur complement is not positive definite (dependent pins) or not finite;
   // x is then unspecified (the caller keeps its own state).

@@ -1,0 +1,205 @@
+#include "bullet_bridge/rope_queries.h"
+
+#include <BulletCollision/BroadphaseCollision/btBroadphaseInterface.h>
+#include <BulletCollision/CollisionDispatch/btCollisionWorld.h>
+#include <BulletCollision/CollisionShapes/btCollisionShape.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "bullet_bridge/find_contacts.h"
+#include "bullet_bridge/rope_world.h"
+#include "rope/common/error.h"
+
+namespace rope::bullet {
+
+namespace {
+
+void requireFinitePoint(const char* name, const btVector3& p) {
+  static const char* const kAxes[3] = {".x", ".y", ".z"};
+  for (int i = 0; i < 3; ++i) requireFinite(std::string(name) + kAxes[i], static_cast<double>(p[i]));
+}
+
+// Smallest root lambda in (0, 1] of |p(lambda) - c|^2 = r^2 for p = o + lambda d, entering the sphere.
+bool raySphere(const btVector3& o, const btVector3& d, const btVector3& c, double r, double& lambda) {
+  const btVector3 m = o - c;
+  const double a = d.dot(d), b = m.dot(d), q = m.dot(m) - r * r;
+  if (!(a > 0.0) || q <= 0.0) return false;  // degenerate ray, or starting inside
+  const double disc = b * b - a * q;
+  if (disc < 0.0) return false;
+  const double root = (-b - std::sqrt(disc)) / a;
+  if (root < 0.0 || root > 1.0) return false;
+  lambda = root;
+  return true;
+}
+
+// First entry of the segment o + lambda d (lambda in [0, 1]) into the capsule; t = axis parameter.
+bool rayCapsule(const btVector3& o, const btVector3& d, const Capsule& capsule, double& lambda, double& t) {
+  const btVector3 axis = capsule.b - capsule.a;
+  const double axis2 = axis.dot(axis);
+  const double r = capsule.radius;
+  bool hit = false;
+  double best = 2.0, bestT = 0.0;
+  if (axis2 > 0.0) {
+    // Infinite cylinder: components perpendicular to the axis.
+    const btVector3 m = o - capsule.a;
+    const btVector3 dp = d - axis * (d.dot(axis) / axis2);
+    const btVector3 mp = m - axis * (m.dot(axis) / axis2);
+    const double a = dp.dot(dp), b = mp.dot(dp), q = mp.dot(mp) - r * r;
+    if (a > 0.0 && q > 0.0) {
+      const double disc = b * b - a * q;
+      if (disc >= 0.0) {
+        const double root = (-b - std::sqrt(disc)) / a;
+        if (root >= 0.0 && root <= 1.0) {
+          const double along = (m + d * root).dot(axis) / axis2;
+          if (along >= 0.0 && along <= 1.0) {
+            hit = true;
+            best = root;
+            bestT = along;
+          }
+        }
+      }
+    }
+  }
+  double cap = 0.0;
+  if (raySphere(o, d, capsule.a, r, cap) && cap < best) {
+    hit = true;
+    best = cap;
+    bestT = 0.0;
+  }
+  if (raySphere(o, d, capsule.b, r, cap) && cap < best) {
+    hit = true;
+    best = cap;
+    bestT = 1.0;
+  }
+  if (hit) {
+    lambda = best;
+    t = bestT;
+  }
+  return hit;
+}
+
+class RopeRayCallback : public btBroadphaseRayCallback {
+ public:
+  RopeRayCallback(const RopeWorld& world, const btVector3& from, const btVector3& to)
+      : world_(world), from_(from), to_(to) {
+    const btVector3 direction = to - from;
+    const btScalar length = direction.length();
+    const btVector3 unit = length > btScalar(0) ? direction / length : btVector3(1, 0, 0);
+    for (int i = 0; i < 3; ++i) {
+      m_rayDirectionInverse[i] = unit[i] == btScalar(0) ? btScalar(BT_LARGE_FLOAT) : btScalar(1) / unit[i];
+      m_signs[i] = m_rayDirectionInverse[i] < btScalar(0);
+    }
+    m_lambda_max = length;
+  }
+
+  bool process(const btBroadphaseProxy* proxy) override {
+    const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+    const RopeObject* rope = CapsuleProxies::ropeOf(*object);
+    if (rope == nullptr || !world_.contains(*rope)) return true;
+    const int index = CapsuleProxies::capsuleIndexOf(*object);
+    if (index < 0 || index >= rope->proxies().size()) return true;
+    const Capsule capsule = rope->proxies().capsule(index);
+    double lambda = 0.0, t = 0.0;
+    if (!rayCapsule(from_, to_ - from_, capsule, lambda, t)) return true;
+    if (best && !(lambda < best->fraction)) return true;
+    const CapsuleProxy& capsuleProxy = rope->proxies().proxy(index);
+    RayHit hit;
+    hit.rope = rope;
+    hit.fraction = lambda;
+    hit.s = capsuleProxy.s0 + t * (capsuleProxy.s1 - capsuleProxy.s0);
+    hit.point = from_ + (to_ - from_) * static_cast<btScalar>(lambda);
+    const btVector3 outward = hit.point - capsule.axisPoint(static_cast<btScalar>(t));
+    hit.normal = outward.length() > btScalar(0) ? outward.normalized() : btVector3(0, 0, 1);
+    best = hit;
+    return true;
+  }
+
+  std::optional<RayHit> best;
+
+ private:
+  const RopeWorld& world_;
+  btVector3 from_, to_;
+};
+
+class RopeAabbCallback : public btBroadphaseAabbCallback {
+ public:
+  explicit RopeAabbCallback(const RopeWorld& world) : world_(world) {}
+  bool process(const btBroadphaseProxy* proxy) override {
+    const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+    const RopeObject* rope = CapsuleProxies::ropeOf(*object);
+    if (rope != nullptr && world_.contains(*rope)) capsules.push_back(object);
+    return true;
+  }
+  std::vector<const btCollisionObject*> capsules;
+
+ private:
+  const RopeWorld& world_;
+};
+
+}  // namespace
+
+std::optional<RayHit> rayTestRopes(const RopeWorld& world, const btVector3& from, const btVector3& to) {
+  requireFinitePoint("from", from);
+  requireFinitePoint("to", to);
+  RopeRayCallback callback(world, from, to);
+  const_cast<RopeWorld&>(world).dynamicsWorld().getBroadphase()->rayTest(from, to, callback);
+  return callback.best;
+}
+
+std::optional<RayHit> rayTest(const RopeWorld& world, const btVector3& from, const btVector3& to) {
+  std::optional<RayHit> best = rayTestRopes(world, from, to);
+  btCollisionWorld::ClosestRayResultCallback bodies(from, to);
+  world.dynamicsWorld().rayTest(from, to, bodies);
+  if (bodies.hasHit() && (!best || bodies.m_closestHitFraction < best->fraction)) {
+    RayHit hit;
+    hit.body = bodies.m_collisionObject;
+    hit.fraction = static_cast<double>(bodies.m_closestHitFraction);
+    hit.point = bodies.m_hitPointWorld;
+    hit.normal = bodies.m_hitNormalWorld;
+    best = hit;
+  }
+  return best;
+}
+
+std::vector<RopeContactHit> contactTest(const RopeWorld& world, const btCollisionObject& object, double margin) {
+  requireNonNegative("margin", margin);
+  btVector3 lo, hi;
+  object.getCollisionShape()->getAabb(object.getWorldTransform(), lo, hi);
+  const btScalar grow = static_cast<btScalar>(margin);
+  lo -= btVector3(grow, grow, grow);
+  hi += btVector3(grow, grow, grow);
+  RopeAabbCallback callback(world);
+  const_cast<RopeWorld&>(world).dynamicsWorld().getBroadphase()->aabbTest(lo, hi, callback);
+  // Deterministic order: by rope (world order), then capsule index.
+  std::vector<std::pair<std::pair<int, int>, const btCollisionObject*>> ordered;
+  for (const btCollisionObject* capsule : callback.capsules) {
+    const RopeObject* rope = CapsuleProxies::ropeOf(*capsule);
+    const int ropeIndex =
+        static_cast<int>(std::find(world.ropes().begin(), world.ropes().end(), rope) - world.ropes().begin());
+    ordered.push_back({{ropeIndex, CapsuleProxies::capsuleIndexOf(*capsule)}, capsule});
+  }
+  std::sort(ordered.begin(), ordered.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<RopeContactHit> hits;
+  std::vector<Contact> contacts;
+  for (const auto& entry : ordered) {
+    const RopeObject* rope = CapsuleProxies::ropeOf(*entry.second);
+    const int index = CapsuleProxies::capsuleIndexOf(*entry.second);
+    if (index < 0 || index >= rope->proxies().size()) continue;
+    contacts.clear();
+    findContacts(rope->proxies().capsule(index), object, margin, contacts);
+    const CapsuleProxy& proxy = rope->proxies().proxy(index);
+    for (const Contact& contact : contacts) {
+      RopeContactHit hit;
+      hit.rope = rope;
+      hit.s = proxy.s0 + static_cast<double>(contact.t) * (proxy.s1 - proxy.s0);
+      hit.contact = contact;
+      hits.push_back(hit);
+    }
+  }
+  return hits;
+}
+
+}  // namespace rope::bullet

@@ -35,7 +35,8 @@ constexpr std::array<std::array<float, 3>, 6> kPalette{{
 
 Rgb defaultObjectColour(const btCollisionObject& object) {
   const btCollisionShape* shape = object.getCollisionShape();
-  if ((shape != nullptr && isPlaneShape(*shape)) || object.isStaticObject()) return Rgb(0.78f, 0.78f, 0.76f);
+  if (shape != nullptr && isPlaneShape(*shape)) return Rgb(0.80f, 0.80f, 0.78f);
+  if (object.isStaticObject()) return Rgb(0.74f, 0.70f, 0.62f);  // stone: scenery, apart from the ground
   const int index = object.getWorldArrayIndex();
   const auto& c = kPalette[static_cast<std::size_t>(index < 0 ? 0 : index) % kPalette.size()];
   return Rgb(c[0], c[1], c[2]);

@@ -16,8 +16,9 @@ struct ExtractionOptions {
   // Objects for which this returns true are left out, e.g. the capsules standing in for a rope's
   // collision geometry (the rope itself is drawn from its spline). Empty: nothing is skipped.
   std::function<bool(const btCollisionObject&)> skip;
-  // Colour of an object (sRGB, channels in [0, 1]). Empty: planes and static objects are drawn
-  // light grey and others take a colour from a fixed palette by their index in the world.
+  // Colour of an object (sRGB, channels in [0, 1]). Empty: planes are light grey, other static
+  // objects stone-coloured, and the rest take a colour from a fixed palette by their index in the
+  // world.
   std::function<Rgb(const btCollisionObject&)> colour;
 };
 

@@ -66,9 +66,10 @@ TEST(WorldExtraction, ColourCallbackAndDefaultColours) {
   extractWorld(world.world, cache, custom, options);
   for (const DrawItem& item : custom.items) EXPECT_TRUE(item.colour.isApprox(Rgb(0.1f, 0.2f, 0.3f)));
 
-  // Default: static objects are grey; a dynamic-looking (non-static) object gets a palette colour.
+  // Default: the plane grey, static objects stone, a non-static object a palette colour.
   world.sphere->setCollisionFlags(world.sphere->getCollisionFlags() & ~btCollisionObject::CF_STATIC_OBJECT);
-  EXPECT_TRUE(defaultObjectColour(*world.box).isApprox(Rgb(0.78f, 0.78f, 0.76f)));
+  EXPECT_TRUE(defaultObjectColour(*world.objects[0]).isApprox(Rgb(0.80f, 0.80f, 0.78f)));
+  EXPECT_TRUE(defaultObjectColour(*world.box).isApprox(Rgb(0.74f, 0.70f, 0.62f)));
   const Rgb sphereColour = defaultObjectColour(*world.sphere);
   EXPECT_GT(sphereColour.maxCoeff() - sphereColour.minCoeff(), 0.1f);
 

@@ -44,6 +44,7 @@ void RodIntegrals::build(const KnotVector& knots, const PointList& restPoints, d
   spanCount_ = knots.controlPointCount() - degree_;
   data_.assign(static_cast<size_t>(spanCount_) * static_cast<size_t>(stride_), 0.0);
   for (int j = 0; j < spanCount_; ++j) computeSpan(knots, restPoints, j);
+  balanceReducedWeights(knots);
 }
 
 void RodIntegrals::computeSpan(const KnotVector& knots, const PointList& restPoints, int j) {
@@ -128,6 +129,7 @@ void RodIntegrals::afterInsertion(const KnotInsertion& plan, const KnotVector& k
   data_.insert(data_.begin() + static_cast<std::ptrdiff_t>(at), static_cast<size_t>(stride_), 0.0);
   ++spanCount_;
   recomputeRange(knots, restPoints, k - degree_ - 1, k + degree_ + 2);
+  balanceReducedWeights(knots);
 }
 
 void RodIntegrals::afterRemoval(const KnotRemoval& plan, const KnotVector& knots,
@@ -140,6 +142,93 @@ void RodIntegrals::afterRemoval(const KnotRemoval& plan, const KnotVector& knots
               data_.begin() + static_cast<std::ptrdiff_t>(at + static_cast<size_t>(stride_)));
   --spanCount_;
   recomputeRange(knots, restPoints, r - degree_ - 2, r + degree_ + 1);
+  balanceReducedWeights(knots);
+}
+
+void RodIntegrals::balanceReducedWeights(const KnotVector& knots) {
+  if (stretching_ != StretchingQuadrature::kLockingFree) return;
+  const int d = degree_;
+  const Layout layout{d + 1, stretchSlots_};
+  using Node = BalanceNode;  // in order of s
+  std::vector<Node>& nodes = nodeScratch_;
+  nodes.clear();
+  for (int j = 0; j < spanCount_; ++j) {
+    const int count = static_cast<int>(spanData(j)[1]);
+    if (count == 0) continue;
+    const double s0 = knots[d + j];
+    const double s1 = knots[d + j + 1];
+    const GaussRule rule = gaussLegendre(count);
+    for (int g = 0; g < count; ++g)
+      nodes.push_back({j, g, 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * rule.nodes[g], 0.5 * (s1 - s0) * rule.weights[g]});
+  }
+  // Rescales point (j, g) to weight w (W0, W1, W3 are all proportional to it).
+  auto setWeight = [&](const Node& node, double w) {
+    double* record = spanData(node.span);
+    double& w0 = record[layout.w0() + node.point];
+    double& w1 = record[layout.w1() + node.point];
+    double& w3 = record[layout.w3() + node.point];
+    const double factor = w / std::sqrt(w0 * w1);
+    w0 *= factor;
+    w1 *= factor;
+    w3 *= factor;
+  };
+  auto fallBack = [&] {
+    for (const Node& node : nodes) setWeight(node, node.plain);
+  };
+  // The derivative space: degree d-1 on the knots without their first and last entry.
+  const int size = static_cast<int>(nodes.size());
+  if (d < 2 || size != knots.controlPointCount() - 1) return fallBack();
+  const std::vector<double>& values = knots.values();
+  std::vector<double> trimmed(values.begin() + 1, values.end() - 1);
+  // A knot of multiplicity d inside makes the derivative space discontinuous there: keep plain weights.
+  for (size_t i = 0; i + static_cast<size_t>(d) - 1 < trimmed.size(); ++i) {
+    const bool interior = trimmed[i] > knots.validBegin() && trimmed[i] < knots.validEnd();
+    if (interior && trimmed[i] == trimmed[i + static_cast<size_t>(d) - 1]) return fallBack();
+  }
+  const KnotVector derivative(d - 1, std::move(trimmed));
+  // Banded system sum_c N_j(x_c) w_c = int N_j ds, j, c = 0 .. size-1, half width W; the collocation
+  // matrix of B-splines at interlacing nodes is totally positive, so elimination needs no pivoting.
+  const int W = d + 1;
+  const int stride = 2 * W + 1;
+  std::vector<double>& band = bandScratch_;
+  std::vector<double>& rhs = rhsScratch_;
+  band.assign(static_cast<size_t>(size) * static_cast<size_t>(stride), 0.0);
+  rhs.resize(static_cast<size_t>(size));
+  auto at = [&](int row, int col) -> double& {
+    return band[static_cast<size_t>(row) * static_cast<size_t>(stride) + static_cast<size_t>(col - row + W)];
+  };
+  for (int j = 0; j < size; ++j) rhs[static_cast<size_t>(j)] = (derivative[j + d] - derivative[j]) / d;
+  BasisValues basis;
+  for (int c = 0; c < size; ++c) {
+    const Node& node = nodes[static_cast<size_t>(c)];
+    const int span = node.span + d - 1;  // the span in the derivative knots
+    evaluateBasis(derivative, span, node.s, 0, basis);
+    for (int a = 0; a < d; ++a) {
+      const int row = span - (d - 1) + a;
+      if (std::abs(row - c) > W) return fallBack();
+      at(row, c) = basis.d[0][static_cast<size_t>(a)];
+    }
+  }
+  for (int p = 0; p < size; ++p) {
+    const double pivot = at(p, p);
+    if (!(std::abs(pivot) > 1e-12)) return fallBack();
+    for (int r = p + 1; r <= std::min(size - 1, p + W); ++r) {
+      const double factor = at(r, p) / pivot;
+      if (factor == 0.0) continue;
+      for (int c = p; c <= std::min(size - 1, p + W); ++c) at(r, c) -= factor * at(p, c);
+      rhs[static_cast<size_t>(r)] -= factor * rhs[static_cast<size_t>(p)];
+    }
+  }
+  for (int p = size - 1; p >= 0; --p) {
+    double sum = rhs[static_cast<size_t>(p)];
+    for (int c = p + 1; c <= std::min(size - 1, p + W); ++c) sum -= at(p, c) * rhs[static_cast<size_t>(c)];
+    rhs[static_cast<size_t>(p)] = sum / at(p, p);
+  }
+  for (int c = 0; c < size; ++c) {
+    const double w = rhs[static_cast<size_t>(c)];
+    if (!std::isfinite(w) || w <= 0.0) return fallBack();
+  }
+  for (int c = 0; c < size; ++c) setWeight(nodes[static_cast<size_t>(c)], rhs[static_cast<size_t>(c)]);
 }
 
 SpanView RodIntegrals::span(int j) const {

@@ -80,6 +80,10 @@ class RodIntegrals {
     return &data_[static_cast<size_t>(j) * static_cast<size_t>(stride_)];
   }
   void recomputeRange(const KnotVector& knots, const PointList& restPoints, int firstSpanK, int lastSpanK);
+  // kLockingFree: re-weights the n-1 reduced points so that the rule integrates the whole derivative
+  // space (degree d-1 splines) exactly, which makes a uniform strain exact on any knots (patch test).
+  // Falls back to plain Gauss weights if the system is singular or a weight is not positive. O(n).
+  void balanceReducedWeights(const KnotVector& knots);
 
   int degree_ = 3;
   int gaussCount_ = 0;
@@ -90,6 +94,12 @@ class RodIntegrals {
   double linearDensity_ = 0.0;
   double bendingStiffness_ = 0.0;
   std::vector<double> data_;
+  struct BalanceNode {
+    int span, point;
+    double s, plain;  // parameter and plain Gauss weight
+  };
+  std::vector<BalanceNode> nodeScratch_;
+  std::vector<double> bandScratch_, rhsScratch_;
 };
 
 }  // namespace rope

@@ -16,14 +16,15 @@ enum class StretchingQuadrature {
   // control points (measured: a 78.5 kN rope, slack ratio 1.25, 11-16 control points hangs 9-10 % too
   // deep and stays V-shaped; from a straight start it hardly sags at all).
   kExact,
-  // Reduced rule: one Gauss point per interior span and d-1 extra points shared by the two end spans,
-  // i.e. n-1 strain samples — the dimension of the spline space C' lives in (degree d-1) — so the
-  // strain is controlled without over-constraining (same catenary: 0.02 % sag error). Costs: the energy
-  // of a given curve changes slightly under refinement (quadrature error), a uniform strain is exact
-  // only on uniform knots (on non-uniform ones the strain field carries an O(h^2) error), and a strain
-  // that varies inside a span around the sampled value has no stretching energy, so in very short spans
-  // (below ~the rope diameter) a curve can fold back inside a span held only by bending; minKnotSpacing
-  // keeps adaptivity out of that range.
+  // Reduced rule: one point per interior span and d-1 extra points shared by the two end spans, i.e.
+  // n-1 strain samples — the dimension of the spline space C' lives in (degree d-1) — so the strain is
+  // controlled without over-constraining (same catenary: 0.02 % sag error). The n-1 weights are solved
+  // for (a banded system, O(n) per knot change) so that the rule integrates that whole space exactly:
+  // a uniform strain is then exact on any knots (patch test). Costs: the energy of a given curve
+  // changes slightly under refinement (quadrature error), and a strain that varies inside a span around
+  // the sampled value has no stretching energy, so in very short spans (below ~the rope diameter) a
+  // curve can fold back inside a span held only by bending; minKnotSpacing keeps adaptivity out of
+  // that range.
   kLockingFree,
 };
 

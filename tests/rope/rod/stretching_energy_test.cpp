@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <random>
 
+#include "rope/spline/knot_insertion.h"
 #include "rope/spline/knot_vector.h"
 
 namespace rope {
@@ -131,6 +132,29 @@ TEST(Stretching, LockingFreeRuleSamplesTheStrainSpaceOnce) {
     EXPECT_EQ(samples, 10) << "degree " << degree;
     EXPECT_NEAR(restLength, 1.0, 1e-14);  // each rule integrates constants exactly
   }
+}
+
+TEST(Stretching, LockingFreeRulePassesThePatchTestOnNonUniformKnots) {
+  // Its weights integrate every b_i' exactly, so a uniform strain is an exact equilibrium: the
+  // internal force vanishes on all interior control points.
+  KnotVector knots(3, {0.0, 0.0, 0.0, 0.0, 0.05, 0.3, 0.35, 0.6, 0.62, 0.9, 1.0, 1.0, 1.0, 1.0});
+  PointList rest = straightRest(knots);
+  RodIntegrals integrals;
+  integrals.build(knots, rest, 0.1, 0.0, RodIntegrals::exactGaussCount(3), StretchingQuadrature::kLockingFree);
+  PointList stretched = rest;
+  for (Vec3& p : stretched) p *= 1.01;
+  PointList force;
+  stretchingForces(integrals, stretched, 100.0, force);
+  const double tension = 0.5 * 100.0 * 1.01 * (1.01 * 1.01 - 1.0);  // (EA/2) gamma (gamma^2 - 1)
+  for (size_t i = 1; i + 1 < force.size(); ++i) EXPECT_LT(force[i].norm(), 1e-12 * tension) << i;
+  EXPECT_NEAR(force.front().x(), tension, 1e-12 * tension);
+  EXPECT_NEAR(force.back().x(), -tension, 1e-12 * tension);
+  // Refinement keeps the property (the weights are rebalanced after each change).
+  const KnotInsertion plan = insertKnot(knots, stretched, 0.41);
+  plan.apply(rest);
+  integrals.afterInsertion(plan, knots, rest);
+  stretchingForces(integrals, stretched, 100.0, force);
+  for (size_t i = 1; i + 1 < force.size(); ++i) EXPECT_LT(force[i].norm(), 1e-12 * tension) << i;
 }
 
 TEST(Stretching, RestStateHasNoEnergyNoForceAndUniformStrainIsExact) {

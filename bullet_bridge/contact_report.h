@@ -37,6 +37,10 @@ struct RopeStepRecord {
   int controlPoints = 0;         // after the step's adaptivity
   int insertions = 0;            // knots inserted by the step's adaptivity
   int removals = 0;              // knots removed by the step's adaptivity
+  // Wall-clock time of the rope's parts of the substep, s (profiling only; not deterministic).
+  double contactSeconds = 0.0;   // candidate recheck, narrowphase and contact law
+  double solveSeconds = 0.0;     // rod step (implicit solve, adaptivity) and body impulses
+  double proxySeconds = 0.0;     // capsule rebuild and swept boxes handed to the broadphase
 };
 
 struct ContactReport {
@@ -44,6 +48,7 @@ struct ContactReport {
   double timeStep = 0;  // s
   std::vector<RopeContactRecord> contacts;
   std::vector<RopeStepRecord> ropes;
+  double pairScanSeconds = 0.0;  // reading Bullet's pair cache for rope candidates, s (profiling)
   double maxPenetration() const;  // over all ropes, m
 };
 

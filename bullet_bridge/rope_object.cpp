@@ -4,6 +4,7 @@
 #include <LinearMath/btAabbUtil2.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -275,6 +276,8 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
   pending_.clear();
   lastStep_ = RopeStepRecord();
   lastStep_.rope = this;
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
   proxies_->rebuild(rod_);
   gatherContacts(candidates, h);
 
@@ -305,6 +308,7 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
     queueSpring(attachment.s, 1.0, spring, dynamicBody(*body), point, -1, static_cast<int>(i));
   }
 
+  const Clock::time_point solveStart = Clock::now();
   const StepReport report = rod_.step(h);
   lastStep_.ok = report.ok;
   lastStep_.failure = report.failure;
@@ -336,7 +340,12 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
     lastStep_.contacts = 0;
   }
   pending_.clear();
+  const Clock::time_point proxyStart = Clock::now();
   lastStep_.proxyOverflows = proxies_->updateBoxes(rod_, h, settings_.speculativeMargin);
+  const Clock::time_point end = Clock::now();
+  lastStep_.contactSeconds = std::chrono::duration<double>(solveStart - start).count();
+  lastStep_.solveSeconds = std::chrono::duration<double>(proxyStart - solveStart).count();
+  lastStep_.proxySeconds = std::chrono::duration<double>(end - proxyStart).count();
 }
 
 }  // namespace rope::bullet

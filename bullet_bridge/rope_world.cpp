@@ -5,6 +5,7 @@
 #include <LinearMath/btAabbUtil2.h>
 
 #include <algorithm>
+#include <chrono>
 
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/rope_debug_draw.h"
@@ -71,6 +72,7 @@ void RopeWorld::removeRope(RopeObject& rope) {
 void RopeWorld::substep(double h) {
   // Candidate bodies per rope from Bullet's pair cache. The cache may still hold pairs whose boxes
   // stopped overlapping (it cleans up lazily), so the overlap is checked again.
+  const auto scanStart = std::chrono::steady_clock::now();
   candidates_.resize(ropes_.size());
   for (auto& list : candidates_) list.clear();
   btBroadphasePairArray& pairs = world_.getPairCache()->getOverlappingPairArray();
@@ -93,6 +95,7 @@ void RopeWorld::substep(double h) {
     candidates_[static_cast<std::size_t>(slot - ropes_.begin())].push_back(body);
   }
 
+  report_.pairScanSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - scanStart).count();
   report_.substep += 1;
   report_.timeStep = h;
   report_.contacts.clear();

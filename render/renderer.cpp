@@ -442,6 +442,17 @@ const GpuMesh& Renderer::Impl::upload(const std::shared_ptr<const Mesh>& mesh) {
     release(found->second);
     meshes.erase(found);
   }
+  // Malformed index data would make llvmpipe read outside the vertex buffer: reject it here, once
+  // per mesh, before anything reaches GL.
+  if (mesh->indices.size() % 3 != 0) {
+    throw InvalidArgument("mesh.indices.size()", std::to_string(mesh->indices.size()), "must be a multiple of 3");
+  }
+  for (std::size_t i = 0; i < mesh->indices.size(); ++i) {
+    if (mesh->indices[i] >= mesh->vertices.size()) {
+      throw InvalidArgument("mesh.indices[" + std::to_string(i) + "]", std::to_string(mesh->indices[i]),
+                            "must be < vertices.size() = " + std::to_string(mesh->vertices.size()));
+    }
+  }
   GpuMesh gpu;
   gpu.source = mesh;
   gpu.indexCount = static_cast<GLsizei>(mesh->indices.size());
@@ -519,10 +530,11 @@ void Renderer::Impl::render(const Scene& scene, const Camera& camera, Image& out
   draws.reserve(scene.items.size() + 1);
   for (const DrawItem& item : scene.items) {
     if (item.mesh->empty()) continue;
+    const GpuMesh& gpu = upload(item.mesh);
     const Eigen::Matrix3d linearPart = item.transform.linear();
     const auto& n = item.mesh->vertices.front().normal;
     const auto& p = item.mesh->vertices.front().position;
-    draws.push_back(Draw{&upload(item.mesh), item.transform.matrix().cast<float>(), linearPart.cast<float>(),
+    draws.push_back(Draw{&gpu, item.transform.matrix().cast<float>(), linearPart.cast<float>(),
                          item.colour, item.material, (linearPart * Vec3(n[0], n[1], n[2])).normalized(),
                          item.transform * Vec3(p[0], p[1], p[2])});
   }

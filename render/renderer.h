@@ -51,7 +51,8 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   // Draws scene from camera and reads the frame back into out (resized to the settings' size,
-  // rows top to bottom). Throws InvalidArgument for a bad camera; std::runtime_error on a GL error.
+  // rows top to bottom). Throws InvalidArgument for a bad camera or a mesh whose indices are not
+  // triangles of its own vertices ("mesh.indices[i]"); std::runtime_error on a GL error.
   void render(const Scene& scene, const Camera& camera, Image& out);
   Image render(const Scene& scene, const Camera& camera);
   // The same with the camera from frameScene().

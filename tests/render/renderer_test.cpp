@@ -238,6 +238,20 @@ TEST_F(RendererTest, RejectsBadSettingsAndCameras) {
   Image image;
   EXPECT_THROW(renderer.render(Scene{}, camera, image), InvalidArgument);
   EXPECT_TRUE(image.empty());
+
+  // A mesh indexing past its vertices never reaches GL.
+  Mesh broken;
+  broken.addVertex(Vec3::Zero(), Vec3::UnitY());
+  broken.addTriangle(0, 0, 5);
+  Scene scene;
+  scene.add(std::make_shared<const Mesh>(broken));
+  try {
+    renderer.render(scene, Camera{}, image);
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.parameter(), "mesh.indices[2]");
+  }
+  EXPECT_NO_THROW(renderer.render(Scene{}, Camera{}, image));  // still usable
 }
 
 }  // namespace

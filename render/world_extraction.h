@@ -3,6 +3,7 @@
 // and placed by its world transform. Works without a GL context, so it is unit-testable.
 
 #include <functional>
+#include <vector>
 
 #include "render/scene.h"
 #include "render/shape_mesh_cache.h"
@@ -29,6 +30,11 @@ void extractWorld(const btCollisionWorld& world, ShapeMeshCache& cache, Scene& s
 // The same for an explicit list (null entries throw InvalidArgument("objects[i]", "null")).
 void extractObjects(const btCollisionObject* const* objects, int count, ShapeMeshCache& cache, Scene& scene,
                     const ExtractionOptions& options = {});
+
+inline void extractObjects(const std::vector<const btCollisionObject*>& objects, ShapeMeshCache& cache, Scene& scene,
+                           const ExtractionOptions& options = {}) {
+  extractObjects(objects.data(), static_cast<int>(objects.size()), cache, scene, options);
+}
 
 // The default colour rule described above.
 Rgb defaultObjectColour(const btCollisionObject& object);

@@ -106,6 +106,8 @@ TEST(WorldExtraction, ExplicitObjectListAndNullEntries) {
     EXPECT_EQ(e.parameter(), "objects[1]");
   }
   EXPECT_EQ(scene.items.size(), 2u);  // unchanged
+  extractObjects(std::vector<const btCollisionObject*>{world.sphere}, cache, scene);
+  EXPECT_EQ(scene.items.size(), 3u);
 }
 
 }  // namespace

@@ -37,6 +37,7 @@ struct RopeStepRecord {
   int controlPoints = 0;         // after the step's adaptivity
   int insertions = 0;            // knots inserted by the step's adaptivity
   int removals = 0;              // knots removed by the step's adaptivity
+  int solvePasses = 0;           // rod solves in the substep (contact active set, contact_response.h)
   // Wall-clock time of the rope's parts of the substep, s (profiling only; not deterministic).
   double contactSeconds = 0.0;   // candidate recheck, narrowphase and contact law
   double solveSeconds = 0.0;     // rod step (implicit solve, adaptivity) and body impulses

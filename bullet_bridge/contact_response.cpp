@@ -6,7 +6,7 @@
 namespace rope::bullet {
 
 ContactSpring contactSpring(const ContactLaw& law, double distance, const Vec3& normal, const Vec3& ropeVelocity,
-                            const Vec3& bodyVelocity, double h) {
+                            const Vec3& bodyVelocity, double h, double frictionNormalForce) {
   const Vec3 w = ropeVelocity - bodyVelocity;
   const Eigen::Matrix3d nn = normal * normal.transpose();
   const Eigen::Matrix3d tangentPlane = Eigen::Matrix3d::Identity() - nn;
@@ -20,7 +20,8 @@ ContactSpring contactSpring(const ContactLaw& law, double distance, const Vec3& 
 
   // Friction bound from the normal force at the current state (not its damping part, which would
   // make friction depend on the approach speed).
-  const double pressing = std::max(0.0, -law.stiffness * distance);
+  const double pressing =
+      frictionNormalForce >= 0.0 ? frictionNormalForce : std::max(0.0, -law.stiffness * distance);
   if (law.friction > 0.0 && pressing > 0.0) {
     const Vec3 slip = tangentPlane * w;
     const double eta = std::min(law.frictionDampingLimit,

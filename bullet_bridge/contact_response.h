@@ -15,6 +15,12 @@
 // The rope then feels exactly F = f0 - h K u_new - D (u_new - u) over the step (what the rod's system
 // integrates); endOfStepForce() rebuilds it from the rope's new velocity at s, and the body gets -F h
 // at the contact point, so the pair conserves linear momentum to round-off.
+//
+// Penalty contact is unilateral and friction bounded by the actual normal force: RopeObject redoes a
+// step (from a copy of the rod, at most 4 solves per substep) without the contacts whose end-of-step
+// normal force came out pulling, and with eta recomputed from each contact's end-of-step normal force
+// where that differs from the estimate by more than 5% (the start-of-step penetration force is a poor
+// estimate when the rope's contact pressure is uneven, and let friction exceed mu N).
 
 #include <Eigen/Core>
 
@@ -37,8 +43,11 @@ struct ContactSpring {
 };
 
 // The linearised law for a contact at gap `distance` (m, < 0 penetrating) over a step of h seconds.
+// frictionNormalForce (N): the normal force that bounds friction; negative means "the penetration
+// force at the current state", max(0, -k d). RopeObject passes the normal force the contact came out
+// with in a previous solve of the same substep (see the header comment).
 ContactSpring contactSpring(const ContactLaw& law, double distance, const Vec3& normal, const Vec3& ropeVelocity,
-                            const Vec3& bodyVelocity, double h);
+                            const Vec3& bodyVelocity, double h, double frictionNormalForce = -1.0);
 
 // Whether a contact acts in this step: penetrating now, or its gap is predicted to close within the
 // step at the current relative velocity (d + h n.(u - v_b) < 0). A speculative contact (d > 0) that

@@ -154,6 +154,7 @@ void RopeObject::queueSpring(double s, double weight, const ContactSpring& sprin
   PendingSpring pending;
   pending.s = s;
   pending.velocity = rod_.velocity(s);
+  pending.weight = weight;
   pending.spring.force = weight * spring.force;
   pending.spring.stiffness = weight * spring.stiffness;
   pending.spring.damping = weight * spring.damping;
@@ -161,7 +162,6 @@ void RopeObject::queueSpring(double s, double weight, const ContactSpring& sprin
   pending.point = point;
   pending.record = record;
   pending.attachment = attachment;
-  rod_.addSpring(s, pending.spring.force, pending.spring.stiffness, pending.spring.damping);
   pending_.push_back(pending);
 }
 
@@ -249,6 +249,8 @@ void RopeObject::gatherContacts(const std::vector<const btCollisionObject*>& can
           }
           const ContactSpring spring = contactSpring(law, distance, normal, u, bodyVelocity, h);
           const int recordIndex = static_cast<int>(contacts_.size());
+          inputs_.resize(contacts_.size() + 1);
+          inputs_.back() = ContactInput{law, distance, normal, u, bodyVelocity, -1.0};
           // Lever rule onto the knots around s unless s is far from every knot (contactKnotSpacing).
           const KnotVector& knots = rod_.knots();
           const int span = knots.findSpan(s);
@@ -273,6 +275,7 @@ void RopeObject::gatherContacts(const std::vector<const btCollisionObject*>& can
 
 void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates, double h) {
   contacts_.clear();
+  inputs_.clear();
   pending_.clear();
   lastStep_ = RopeStepRecord();
   lastStep_.rope = this;
@@ -309,7 +312,68 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
   }
 
   const Clock::time_point solveStart = Clock::now();
-  const StepReport report = rod_.step(h);
+  // Unilateral contact by a small active set: a contact whose force at the end of the step pulls the
+  // rope onto the body (the rope left the surface during the step, or a speculative contact did not
+  // close) is dropped and the step is redone from a copy of the rod, at most kMaxSolvePasses times.
+  constexpr int kMaxSolvePasses = 4;
+  const bool mayRetry = lastStep_.contacts > 0;
+  if (mayRetry) {
+    if (backup_ == nullptr) {
+      backup_ = std::make_unique<Rod>(rod_);
+    } else {
+      *backup_ = rod_;
+    }
+  }
+  StepReport report;
+  for (int pass = 1;; ++pass) {
+    lastStep_.solvePasses = pass;
+    for (const PendingSpring& pending : pending_) {
+      if (pending.record >= 0 && !contacts_[static_cast<std::size_t>(pending.record)].active) continue;
+      rod_.addSpring(pending.s, pending.spring.force, pending.spring.stiffness, pending.spring.damping);
+    }
+    report = rod_.step(h);
+    if (!report.ok || !mayRetry || pass >= kMaxSolvePasses) break;
+    std::vector<Vec3>& totals = forceTotals_;
+    totals.assign(contacts_.size(), Vec3::Zero());
+    for (const PendingSpring& pending : pending_) {
+      if (pending.record < 0) continue;
+      if (!contacts_[static_cast<std::size_t>(pending.record)].active) continue;
+      totals[static_cast<std::size_t>(pending.record)] +=
+          endOfStepForce(pending.spring, pending.velocity, rod_.velocity(pending.s), h);
+    }
+    bool changed = false;
+    for (std::size_t i = 0; i < contacts_.size(); ++i) {
+      RopeContactRecord& record = contacts_[i];
+      if (!record.active) continue;
+      ContactInput& input = inputs_[i];
+      const double normalForce = totals[i].dot(input.normal);
+      if (normalForce < 0.0) {
+        record.active = false;
+        --lastStep_.contacts;
+        changed = true;
+        continue;
+      }
+      if (!(input.law.friction > 0.0)) continue;
+      const double estimate =
+          input.frictionNormalForce >= 0.0 ? input.frictionNormalForce : std::max(0.0, -input.law.stiffness * input.distance);
+      if (std::abs(normalForce - estimate) <= 0.05 * std::max(normalForce, estimate)) continue;
+      input.frictionNormalForce = normalForce;
+      changed = true;
+    }
+    if (!changed) break;
+    // Re-evaluate the springs of the contacts whose friction bound changed.
+    for (PendingSpring& pending : pending_) {
+      if (pending.record < 0) continue;
+      const ContactInput& input = inputs_[static_cast<std::size_t>(pending.record)];
+      if (!(input.frictionNormalForce >= 0.0)) continue;
+      const ContactSpring spring = contactSpring(input.law, input.distance, input.normal, input.velocity,
+                                                 input.bodyVelocity, h, input.frictionNormalForce);
+      pending.spring.force = pending.weight * spring.force;
+      pending.spring.stiffness = pending.weight * spring.stiffness;
+      pending.spring.damping = pending.weight * spring.damping;
+    }
+    rod_ = *backup_;
+  }
   lastStep_.ok = report.ok;
   lastStep_.failure = report.failure;
   lastStep_.controlPoints = rod_.controlPointCount();
@@ -317,6 +381,7 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
   lastStep_.removals = report.removals;
   if (report.ok) {
     for (const PendingSpring& pending : pending_) {
+      if (pending.record >= 0 && !contacts_[static_cast<std::size_t>(pending.record)].active) continue;
       const Vec3 force = endOfStepForce(pending.spring, pending.velocity, rod_.velocity(pending.s), h);
       if (pending.record >= 0) {
         contacts_[static_cast<std::size_t>(pending.record)].force += toBullet(force);

@@ -90,6 +90,7 @@ class RopeObject {
     ContactSpring spring;
     btRigidBody* body;  // receives the opposite impulse (nullptr: static or kinematic)
     btVector3 point;    // where, world frame
+    double weight;      // share of the contact's spring (lever rule), 1 for attachments
     int record;         // index in contacts_, or -1 for an attachment
     int attachment;     // index in attachments_, or -1 for a contact
   };
@@ -104,6 +105,16 @@ class RopeObject {
   RopeStepRecord lastStep_;
   std::vector<PendingSpring> pending_;
   std::vector<Contact> scratch_;
+  // What a contact's law was evaluated from, per contact record (to re-evaluate its friction).
+  struct ContactInput {
+    ContactLaw law;
+    double distance;
+    Vec3 normal, velocity, bodyVelocity;
+    double frictionNormalForce;  // N, < 0: the start-of-step estimate
+  };
+  std::vector<ContactInput> inputs_;
+  std::vector<Vec3> forceTotals_;  // per contact record: end-of-step force of the last solve, N
+  std::unique_ptr<Rod> backup_;       // the rod before the step, for redoing it without pulling contacts
 };
 
 }  // namespace rope::bullet

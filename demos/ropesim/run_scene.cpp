@@ -43,7 +43,7 @@ RunStatistics runScene(const RopesimOptions& options) {
   }
 
   RunStatistics statistics(options.scene);
-  StepMeasurements latest;
+  StepMeasurements latest = scene->measure();
   render::Scene drawList;
   render::Image image;
   double time = 0.0;

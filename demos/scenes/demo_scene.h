@@ -35,6 +35,9 @@ class DemoScene {
   virtual double timeStep() const = 0;
   // Advances one timeStep(). Throws std::runtime_error naming the failure if the simulation fails.
   virtual StepMeasurements step() = 0;
+  // The measurements of the current state without stepping (insertions and removals zero): what
+  // the first frame, before any step, records.
+  virtual StepMeasurements measure() const { return {}; }
   // Adds the current geometry to a draw list (no GL involved).
   virtual void draw(render::Scene& scene) const = 0;
   // A fixed camera, or nullopt to frame the first frame automatically.

@@ -77,10 +77,15 @@ StepMeasurements HangScene::step() {
   if (!report.ok) throw std::runtime_error(std::string("hang: rod step failed: ") + report.failure);
   time_ = next;
 
-  StepMeasurements measurements;
-  measurements.controlPoints = report.controlPoints;
+  StepMeasurements measurements = measure();
   measurements.insertions = report.insertions;
   measurements.removals = report.removals;
+  return measurements;
+}
+
+StepMeasurements HangScene::measure() const {
+  StepMeasurements measurements;
+  measurements.controlPoints = rod_.controlPointCount();
   measurements.maxStrain = rod_.maxStrain();
   measurements.series = {{"sag_m", sag()}, {"analytic_sag_m", analyticSag()}};
   return measurements;

@@ -65,24 +65,27 @@ Vec3 TractrixScene::pathPoint(const Vec3& centre, double t) const {
 
 StepMeasurements TractrixScene::step() {
   time_ += settings_.timeStep;
-  const TractrixStepReport& trx = polyline_.moveLeadingEnd(pathPoint(polylineCentre_, time_));
-  const double trxError = trx.lengthError;
+  polyline_.moveLeadingEnd(pathPoint(polylineCentre_, time_));
   const TractrixStepReport& adaptive = spline_.moveLeadingEnd(pathPoint(splineCentre_, time_));
-
-  StepMeasurements measurements;
-  measurements.controlPoints = adaptive.controlPointCount;
+  StepMeasurements measurements = measure();
   measurements.insertions = adaptive.insertions;
   measurements.removals = adaptive.merges;
-  // Kinematic ropes do not stretch; their strain is the relative length error of the curve.
-  measurements.maxStrain = std::max(std::abs(trxError), std::abs(adaptive.lengthError));
   double largestMergeError = 0.0;
   for (const MergeRecord& merge : adaptive.mergeRecords) {
     largestMergeError = std::max(largestMergeError, merge.chosenLengthError() / spline_.initialLength());
   }
-  measurements.series = {{"length_error_trx", trxError},
-                         {"length_error_trx_sd_mrg", adaptive.lengthError},
-                         {"control_points_trx", static_cast<double>(polyline_.controlPointCount())},
-                         {"largest_merge_relative_error_trx_sd_mrg", largestMergeError}};
+  measurements.series.push_back({"largest_merge_relative_error_trx_sd_mrg", largestMergeError});
+  return measurements;
+}
+
+StepMeasurements TractrixScene::measure() const {
+  StepMeasurements measurements;
+  measurements.controlPoints = spline_.controlPointCount();
+  // Kinematic ropes do not stretch; their strain is the relative length error of the curve.
+  measurements.maxStrain = std::max(std::abs(polyline_.lengthError()), std::abs(spline_.lengthError()));
+  measurements.series = {{"length_error_trx", polyline_.lengthError()},
+                         {"length_error_trx_sd_mrg", spline_.lengthError()},
+                         {"control_points_trx", static_cast<double>(polyline_.controlPointCount())}};
   return measurements;
 }
 

@@ -27,6 +27,7 @@ class TractrixScene : public DemoScene {
 
   double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
+  StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
   std::optional<render::Camera> camera() const override;
 

@@ -18,6 +18,7 @@ TEST(TractrixScene, LeadingEndsFollowThePathAndTrxKeepsItsLength) {
     const StepMeasurements m = scene.step();
     maxPoints = std::max(maxPoints, m.controlPoints);
     ASSERT_EQ(m.series.size(), 4u);
+    ASSERT_EQ(m.series[0].first, "length_error_trx");
     // TRX is an exact polyline of rigid segments.
     ASSERT_NEAR(m.series[0].second, 0.0, 1e-12) << "step " << i;
   }

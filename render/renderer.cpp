@@ -174,7 +174,8 @@ uniform float uHorizonY;  // NDC y of the horizon
 out float vElevation;
 void main() {
   float bottom = clamp(uHorizonY, -1.0, 1.0);
-  vec2 p = vec2(gl_VertexID == 1 || gl_VertexID == 2 ? 1.0 : -1.0, gl_VertexID >= 2 ? 1.0 : bottom);
+  // Triangle-strip order: bottom-left, bottom-right, top-left, top-right.
+  vec2 p = vec2(gl_VertexID == 1 || gl_VertexID == 3 ? 1.0 : -1.0, gl_VertexID >= 2 ? 1.0 : bottom);
   vElevation = p.y - uHorizonY;
   gl_Position = vec4(p, 1.0, 1.0);
 }

@@ -66,7 +66,9 @@ void RopeWorld::removeRope(RopeObject& rope) {
   if (it == ropes_.end()) throw InvalidArgument("rope", "not in this world", "must have been added to it");
   rope.leaveWorld();
   ropes_.erase(it);
-  report_ = ContactReport();
+  // The last report must not point at a rope that may be destroyed next.
+  report_.contacts.clear();
+  report_.ropes.clear();
 }
 
 void RopeWorld::substep(double h) {

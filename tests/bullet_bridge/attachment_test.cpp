@@ -142,7 +142,7 @@ TEST(AttachmentScenario, BodyAttachmentConservesLinearMomentum) {
     worst = std::max(worst, (total() - initial).norm() / initial.norm());
   }
   EXPECT_GT(box->getLinearVelocity().y(), 0.005);  // dragged along
-  EXPECT_LT(worst, 1e-9);
+  EXPECT_LT(worst, sizeof(btScalar) == sizeof(double) ? 1e-9 : 1e-5);  // float: btScalar round-off
   std::printf("attachment momentum: worst relative drift %.3g\n", worst);
 }
 

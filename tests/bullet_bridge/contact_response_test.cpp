@@ -101,7 +101,6 @@ RampResult runRamp(double mu) {
   const Vec3 start = -0.5 * down + (0.1 + rod.radius + 1e-4) * up;
   BulletRopeSettings bridge;
   bridge.friction = mu;
-  if (getenv("KNOTSP")) bridge.contactKnotSpacing = atof(getenv("KNOTSP"));
   RopeObject rope(Rod::fromSegment(rod, start, start + 0.5 * down), bridge);
   physics.ropes().addRope(rope);
   const double h = 1.0 / 240.0;

@@ -137,7 +137,8 @@ TEST(RopeWorldScenario, RopeAndBoxCollidingConserveLinearMomentum) {
   }
   EXPECT_GT(contactSteps, 5);
   EXPECT_LT(box->getLinearVelocity().y(), 0.25);  // slowed from 0.5 m/s by the rope that hit it
-  EXPECT_LT(worst, 1e-9);
+  // Exact in the double build; float Bullet rounds the box's velocity to ~1e-7 per impulse.
+  EXPECT_LT(worst, sizeof(btScalar) == sizeof(double) ? 1e-9 : 1e-5);
   std::printf("momentum: worst relative drift %.3g over %d contact steps\n", worst, contactSteps);
 }
 
@@ -249,18 +250,18 @@ TEST(RopeWorld, BadInputThrowsAndChangesNothing) {
 // A body whose transform became NaN is skipped (and reported); the rope stays finite.
 TEST(RopeWorld, NonFiniteBodyIsSkippedAndReported) {
   demos::PhysicsWorld physics(btVector3(0, 0, 0));
-  btRigidBody* box = physics.addBox(btVector3(0.1, 0.1, 0.1), 0.0, btVector3(0.5, 1, 0));
+  btRigidBody* box = physics.addBox(btVector3(0.1, 0.1, 0.1), 0.0, btVector3(0.5, 0.8995, 0));  // 0.5 mm into the rope
   RopeObject rope(Rod::fromSegment(limpRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)));
   physics.ropes().addRope(rope);
   stepWorld(physics.world(), 2);
-  ASSERT_GT(rope.lastStep().contacts, 0);
+  ASSERT_FALSE(rope.contacts().empty());  // the box is found
   btTransform broken = box->getWorldTransform();
   broken.setOrigin(btVector3(std::numeric_limits<btScalar>::quiet_NaN(), 1, 0));
   box->setWorldTransform(broken);
   rope.substep({box}, kStep);  // as the action would, with the broken body as a candidate
   EXPECT_TRUE(rope.lastStep().ok);
   EXPECT_EQ(rope.lastStep().skippedBodies, 1);
-  EXPECT_EQ(rope.lastStep().contacts, 0);
+  EXPECT_TRUE(rope.contacts().empty());
   for (const Vec3& p : rope.rod().controlPoints()) EXPECT_TRUE(p.allFinite());
   box->setWorldTransform(btTransform::getIdentity());
 }

@@ -186,6 +186,21 @@ TEST_F(RendererTest, EmptySceneAndDefaultCamera) {
   EXPECT_GT(image.pixel(kWidth / 2, 0)[2], image.pixel(kWidth / 2, 0)[0]);
 }
 
+TEST_F(RendererTest, SkyGradientFillsTheWholeBandAboveTheHorizon) {
+  Renderer renderer(smallSettings());
+  Camera camera;  // level view: the horizon crosses the middle of the image
+  camera.eye = Vec3(0, 1, 5);
+  camera.target = Vec3(0, 1, 0);
+  const Image image = renderer.render(Scene{}, camera);
+  // Symmetric left to right (a half-drawn sky quad leaves one corner in the clear colour) and
+  // bluer towards the top (zenith) than just above the horizon.
+  for (int y = 0; y < kHeight / 2 - 10; y += 10) {
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(image.pixel(2, y)[k], image.pixel(kWidth - 3, y)[k], 2) << "row " << y;
+  }
+  auto blueness = [&](int y) { return image.pixel(kWidth / 2, y)[2] - image.pixel(kWidth / 2, y)[0]; };
+  EXPECT_GT(blueness(0), blueness(kHeight / 2 - 10) + 20);
+}
+
 TEST_F(RendererTest, SceneWithoutAPlaneGetsAGroundUnderIt) {
   Renderer renderer(smallSettings());
   Scene scene;

@@ -58,12 +58,17 @@ StepMeasurements CraneScene::step() {
   time_ = next;
   const bullet::RopeStepRecord& record = rope_->lastStep();
   if (!record.ok) throw std::runtime_error(std::string("crane: rope step failed: ") + record.failure);
-  StepMeasurements measurements;
-  measurements.controlPoints = record.controlPoints;
+  StepMeasurements measurements = measure();
   measurements.insertions = record.insertions;
   measurements.removals = record.removals;
+  return measurements;
+}
+
+StepMeasurements CraneScene::measure() const {
+  StepMeasurements measurements;
+  measurements.controlPoints = rope_->rod().controlPointCount();
   measurements.maxStrain = rope_->rod().maxStrain();
-  measurements.maxPenetration = record.maxPenetration;
+  measurements.maxPenetration = rope_->lastStep().maxPenetration;
   measurements.series = {{"box_y_m", static_cast<double>(box_->getCenterOfMassPosition().y())},
                          {"attachment_gap_m", attachmentGap()},
                          {"expected_strain", expectedStrain()}};

@@ -35,6 +35,7 @@ class CraneScene : public DemoScene {
 
   double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
+  StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
   std::optional<render::Camera> camera() const override;
 

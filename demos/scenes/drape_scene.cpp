@@ -75,13 +75,18 @@ StepMeasurements DrapeScene::step() {
   time_ += settings_.timeStep;
   const bullet::RopeStepRecord& record = rope_->lastStep();
   if (!record.ok) throw std::runtime_error(std::string("drape: rope step failed: ") + record.failure);
-  StepMeasurements measurements;
-  measurements.controlPoints = record.controlPoints;
+  StepMeasurements measurements = measure();
   measurements.insertions = record.insertions;
   measurements.removals = record.removals;
+  return measurements;
+}
+
+StepMeasurements DrapeScene::measure() const {
+  StepMeasurements measurements;
+  measurements.controlPoints = rope_->rod().controlPointCount();
   measurements.maxStrain = rope_->rod().maxStrain();
-  measurements.maxPenetration = record.maxPenetration;
-  measurements.series = {{"contacts", static_cast<double>(record.contacts)}, {"lowest_m", lowestPoint()}};
+  measurements.maxPenetration = rope_->lastStep().maxPenetration;
+  measurements.series = {{"contacts", static_cast<double>(rope_->lastStep().contacts)}, {"lowest_m", lowestPoint()}};
   return measurements;
 }
 

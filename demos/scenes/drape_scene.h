@@ -33,6 +33,7 @@ class DrapeScene : public DemoScene {
 
   double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
+  StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
   std::optional<render::Camera> camera() const override;
 

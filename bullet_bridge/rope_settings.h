@@ -13,8 +13,11 @@ struct BulletRopeSettings {
   // Penalty stiffness of one contact point, N/m, > 0. Enters the rope's implicit system
   // (Rod::addSpring), so the rope side is stable for any value; on a dynamic body the force is an
   // explicit impulse, so per contact it is capped at bodyStabilityFactor * m_eff / h^2 (m_eff the
-  // body's effective mass at the contact point along the normal).
-  double contactStiffness = 5.0e4;
+  // body's effective mass at the contact point along the normal). Not much stiffer by default: the
+  // resting depth per contact (force / k, often < 1e-6 m) must stay well above btScalar round-off of
+  // the contact distance, or float builds see noisy normal forces (measured: at 5e4 a rope on a float
+  // ramp chattered and its friction doubled; at 1e4 both precisions match Coulomb within 2%).
+  double contactStiffness = 1.0e4;
   // Penalty damping along the normal, N s/m, >= 0 (capped like the stiffness, by factor * m_eff / h).
   double contactDamping = 50.0;
   // Coulomb friction coefficient, >= 0 (0 = frictionless).

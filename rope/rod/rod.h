@@ -39,6 +39,7 @@
 #include "rope/rod/pin_constraints.h"
 #include "rope/rod/rod_integrals.h"
 #include "rope/rod/rod_settings.h"
+#include "rope/spline/knot_removal.h"
 #include "rope/spline/knot_vector.h"
 
 namespace rope {
@@ -167,6 +168,8 @@ class Rod {
   bool assembleAndSolve(double h, StepReport& report);
   void adapt(StepReport& report);
   void insertKnotUnchecked(double s);
+  // Applies a planned removal to knots, points, velocities, rest state and integrals together.
+  void applyRemoval(const KnotRemoval& plan);
   bool isInteractionKnot(double s) const;
 
   RodSettings settings_;

@@ -67,6 +67,7 @@ void RodSettings::validate() const {
                           "must satisfy settings.insertAngle < removeAngle < pi");
   }
   requirePositive("settings.removalErrorBound", removalErrorBound);
+  requirePositive("settings.removalVelocityErrorBound", removalVelocityErrorBound);
   requirePositive("settings.minKnotSpacing", minKnotSpacing);
   // Derived quantities must be usable too (e.g. a radius so small that EA underflows to 0).
   requirePositive("settings.linearDensity (derived)", effectiveLinearDensity());

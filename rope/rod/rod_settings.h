@@ -62,6 +62,11 @@ struct RodSettings {
   double removeAngle = 160.0 * 3.14159265358979323846 / 180.0;  // rad (c = 0.030)
   // A knot is removed only if the curve (and the rest curve) move by at most this much. m, > 0.
   double removalErrorBound = 1.0e-4;
+  // ... and only if the velocity field moves by at most this much (m/s, > 0), which also bounds the
+  // momentum a removal can change by (rod mass times this). Without it a removal in a part of the
+  // rope whose motion the coarser spline cannot carry (an impact, a whip) changed a moving rope's
+  // momentum by 2%.
+  double removalVelocityErrorBound = 1.0e-3;
   // No knot span is split below twice this rest length, and no interaction knot is placed closer
   // than this to an existing knot (about a rope diameter: finer spans resolve nothing physical, see
   // StretchingQuadrature::kLockingFree). m, > 0.

@@ -138,3 +138,36 @@ TEST(Adaptivity, CountsStayWithinTheLimits) {
 
 }  // namespace
 }  // namespace rope
+
+namespace rope {
+namespace {
+
+// Adaptive removal respects the velocity bound: a straight rope whose velocity field the coarser
+// spline cannot carry keeps its knots, and once the field is one the coarse spline holds (a
+// uniform velocity) the same knots go.
+TEST(Adaptivity, RemovalWaitsForAVelocityFieldTheCoarserSplineCanCarry) {
+  RodSettings settings;
+  settings.gravity = Vec3::Zero();
+  settings.initialControlPoints = 16;
+  settings.minControlPoints = 4;
+  Rod rod = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  const int count = rod.controlPointCount();
+  PointList wavy(static_cast<size_t>(count));
+  for (int i = 0; i < count; ++i) wavy[static_cast<size_t>(i)] = Vec3(0, 0, (i % 2 == 0 ? 0.5 : -0.5));
+  rod.setVelocities(wavy);
+  const StepReport blocked = rod.step(1e-6);
+  ASSERT_TRUE(blocked.ok);
+  EXPECT_EQ(blocked.removals, 0);
+  EXPECT_EQ(rod.controlPointCount(), count);
+
+  rod.setVelocities(PointList(static_cast<size_t>(count), Vec3(0, 0, 0.5)));
+  const Vec3 momentum = rod.momentum();
+  const StepReport allowed = rod.step(1e-6);
+  ASSERT_TRUE(allowed.ok);
+  EXPECT_GT(allowed.removals, 0);
+  EXPECT_LE(allowed.maxRemovalVelocityError, settings.removalVelocityErrorBound);
+  EXPECT_LT((rod.momentum() - momentum).norm(), rod.mass() * settings.removalVelocityErrorBound);
+}
+
+}  // namespace
+}  // namespace rope

@@ -73,6 +73,8 @@ TEST(RodSettings, EveryBadValueNamesItsField) {
       {"settings.removeAngle", [](RodSettings& s) { s.removeAngle = kPi; }},
       {"settings.removeAngle", [](RodSettings& s) { s.removeAngle = kNaN; }},
       {"settings.removalErrorBound", [](RodSettings& s) { s.removalErrorBound = 0.0; }},
+      {"settings.removalVelocityErrorBound", [](RodSettings& s) { s.removalVelocityErrorBound = 0.0; }},
+      {"settings.removalVelocityErrorBound", [](RodSettings& s) { s.removalVelocityErrorBound = kNaN; }},
       {"settings.minKnotSpacing", [](RodSettings& s) { s.minKnotSpacing = -1.0; }},
   };
   for (const BadCase& bad : cases) {

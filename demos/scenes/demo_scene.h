@@ -37,7 +37,7 @@ class DemoScene {
   virtual StepMeasurements step() = 0;
   // The measurements of the current state without stepping (insertions and removals zero): what
   // the first frame, before any step, records.
-  virtual StepMeasurements measure() const { return {}; }
+  virtual StepMeasurements measure() const = 0;
   // Adds the current geometry to a draw list (no GL involved).
   virtual void draw(render::Scene& scene) const = 0;
   // A fixed camera, or nullopt to frame the first frame automatically.

@@ -12,11 +12,19 @@ ContactSpring contactSpring(const ContactLaw& law, double distance, const Vec3& 
   const Eigen::Matrix3d tangentPlane = Eigen::Matrix3d::Identity() - nn;
 
   ContactSpring spring;
-  const double normalForce = -law.stiffness * distance - law.damping * normal.dot(w) +
-                             law.stiffness * h * normal.dot(bodyVelocity);
-  spring.force = normalForce * normal;
-  spring.stiffness = law.stiffness * nn;
-  spring.damping = law.damping * nn;
+  if (distance > 0.0) {
+    // Speculative: the gap closes within the step. Drive the relative normal speed to -d/h, the
+    // speed that lands the rope on the surface at the end of the step (f = c_s (-d/h - n.w_new),
+    // implicit in w_new); the penalty spring takes over once it touches.
+    spring.force = law.speculativeDamping * (-distance / h - normal.dot(w)) * normal;
+    spring.damping = law.speculativeDamping * nn;
+  } else {
+    const double normalForce = -law.stiffness * distance - law.damping * normal.dot(w) +
+                               law.stiffness * h * normal.dot(bodyVelocity);
+    spring.force = normalForce * normal;
+    spring.stiffness = law.stiffness * nn;
+    spring.damping = law.damping * nn;
+  }
 
   // Friction bound from the normal force at the current state (not its damping part, which would
   // make friction depend on the approach speed).

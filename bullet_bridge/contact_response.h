@@ -31,6 +31,7 @@ namespace rope::bullet {
 struct ContactLaw {
   double stiffness = 0.0;           // k, N/m
   double damping = 0.0;             // c, N s/m
+  double speculativeDamping = 0.0;  // c_s, N s/m: normal law of a contact that is still apart
   double friction = 0.0;            // mu
   double frictionVelocity = 1e-3;   // v_reg, m/s
   double frictionDampingLimit = 1e300;  // cap on eta, N s/m (explicit stability on light bodies)

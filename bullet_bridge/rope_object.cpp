@@ -237,6 +237,7 @@ void RopeObject::gatherContacts(const std::vector<const btCollisionObject*>& can
           ContactLaw law;
           law.stiffness = settings_.contactStiffness;
           law.damping = settings_.contactDamping;
+          law.speculativeDamping = settings_.speculativeDamping;
           law.friction = settings_.friction;
           law.frictionVelocity = settings_.frictionVelocity;
           if (body != nullptr) {
@@ -244,6 +245,7 @@ void RopeObject::gatherContacts(const std::vector<const btCollisionObject*>& can
                 static_cast<double>(body->computeImpulseDenominator(contact.pointOnBody, contact.normal));
             capForBody(inverseMass, h, settings_.bodyStabilityFactor, law.stiffness, law.damping);
             double unusedStiffness = law.stiffness;
+            capForBody(inverseMass, h, settings_.bodyStabilityFactor, unusedStiffness, law.speculativeDamping);
             law.frictionDampingLimit = std::numeric_limits<double>::max();
             capForBody(inverseMass, h, settings_.bodyStabilityFactor, unusedStiffness, law.frictionDampingLimit);
           }

@@ -10,6 +10,7 @@ namespace rope::bullet {
 void BulletRopeSettings::validate() const {
   requirePositive("settings.contactStiffness", contactStiffness);
   requireNonNegative("settings.contactDamping", contactDamping);
+  requireNonNegative("settings.speculativeDamping", speculativeDamping);
   requireNonNegative("settings.friction", friction);
   requirePositive("settings.frictionVelocity", frictionVelocity);
   if (capsulesPerSpan < 1 || capsulesPerSpan > 64) {

@@ -20,6 +20,13 @@ struct BulletRopeSettings {
   double contactStiffness = 1.0e4;
   // Penalty damping along the normal, N s/m, >= 0 (capped like the stiffness, by factor * m_eff / h).
   double contactDamping = 50.0;
+  // A speculative contact (still apart, but closing within the step at the current approach speed)
+  // acts as a damper of this coefficient towards the approach speed that exactly closes the gap,
+  // -gap/h, so that a fast rope ends the step on the surface instead of being merely slowed by the
+  // spring (which let a 17 m/s rope pass a 1 cm plate). N s/m, >= 0; it must be large against the
+  // rope's local mass over h (about 1 N s/m for a 1 cm rope at 1/240 s). Capped on light bodies
+  // like contactDamping.
+  double speculativeDamping = 1.0e3;
   // Coulomb friction coefficient, >= 0 (0 = frictionless).
   double friction = 0.5;
   // Regularisation velocity of Coulomb friction, m/s, > 0: below it the friction force grows linearly

@@ -35,6 +35,28 @@ TEST(ContactResponse, RestingContactPushesAlongNormal) {
   EXPECT_NEAR(spring.damping(1, 1), 20.0, 1e-12);
 }
 
+// A contact still apart but closing within the step is a damper towards the approach speed -d/h
+// that lands the rope on the surface: no spring (it would pull before contact), no friction yet.
+TEST(ContactResponse, SpeculativeContactLandsTheRopeOnTheSurface) {
+  ContactLaw speculative = law();
+  speculative.speculativeDamping = 1e3;
+  const Vec3 n(0, 1, 0);
+  const double gap = 0.01, h = 1.0 / 240.0;
+  const Vec3 u(0.3, -20.0, 0.0);
+  const ContactSpring spring = contactSpring(speculative, gap, n, u, Vec3::Zero(), h);
+  EXPECT_NEAR(spring.force.y(), 1e3 * (-gap / h + 20.0), 1e-9);
+  EXPECT_EQ(spring.stiffness, Eigen::Matrix3d::Zero());
+  EXPECT_NEAR(spring.damping(1, 1), 1e3, 1e-12);
+  EXPECT_NEAR(spring.damping(0, 0), 0.0, 1e-12);
+  EXPECT_NEAR(spring.force.x(), 0.0, 1e-12);
+  // A 2 g point of rope under this law alone, stepped implicitly: (m + h c) du = h f0.
+  const double mass = 0.002;
+  const double du = h * spring.force.y() / (mass + h * spring.damping(1, 1));
+  const double endGap = gap + h * (u.y() + du);
+  EXPECT_GT(endGap, -1e-4);  // on the surface to within a tenth of a millimetre
+  EXPECT_LT(endGap, 1e-4);
+}
+
 TEST(ContactResponse, SlidingFrictionIsCoulomb) {
   const Vec3 n(0, 1, 0);
   const Vec3 u(2.0, 0, 0);  // sliding at 2 m/s >> v_reg

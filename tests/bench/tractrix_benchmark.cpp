@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "demos/scenes/arc_path.h"
 #include "rope/tractrix/tractrix_chain.h"
 #include "rope/tractrix/tractrix_rope.h"
 
@@ -12,38 +13,11 @@ namespace {
 using rope::PointList;
 using rope::Vec3;
 
-constexpr double kPi = 3.14159265358979323846;
-
-// The S-bend of tests/rope/tractrix/tractrix_experiment_test.cpp: 1 m pull along the rope, then
-// left 90° and right 180° on 1.2 m radii, then straight; 52 targets 0.5 m apart.
+// The S-bend of the experiment test (demos/scenes/arc_path.h): 52 targets 0.5 m apart.
 PointList experimentTargets() {
+  const rope::demos::ArcPath path = rope::demos::sBendPath();
   PointList targets;
-  for (int k = 1; k <= 52; ++k) {
-    double s = 0.5 * k;
-    Vec3 p = Vec3::Zero();
-    double heading = 0.0;
-    auto run = [&](double length) {
-      const double l = std::min(length, s);
-      p += l * Vec3(std::cos(heading), std::sin(heading), 0.0);
-      s -= l;
-    };
-    auto arc = [&](double turn) {
-      const double radius = 1.2;
-      const double l = std::min(radius * std::fabs(turn), s);
-      const double sign = turn > 0 ? 1.0 : -1.0;
-      const Vec3 centre = p + sign * radius * Vec3(-std::sin(heading), std::cos(heading), 0.0);
-      const double start = std::atan2(p.y() - centre.y(), p.x() - centre.x());
-      const double end = start + sign * l / radius;
-      p = centre + radius * Vec3(std::cos(end), std::sin(end), 0.0);
-      heading += sign * l / radius;
-      s -= l;
-    };
-    run(1.0);
-    if (s > 0) arc(0.5 * kPi);
-    if (s > 0) arc(-kPi);
-    if (s > 0) run(s);
-    targets.push_back(p);
-  }
+  for (int k = 1; k <= 52; ++k) targets.push_back(path.at(0.5 * k));
   return targets;
 }
 

@@ -11,6 +11,7 @@
 #include <random>
 #include <string>
 
+#include "demos/scenes/arc_path.h"
 #include "rope/tractrix/length_angle.h"
 #include "rope/tractrix/tractrix_rope.h"
 
@@ -19,46 +20,9 @@ namespace {
 
 const PointList kStraight = {Vec3(0, 0, 0), Vec3(-5, 0, 0)};  // leading end at the origin
 
-// A planar path by arc length s: a straight run along `heading`, then two arcs (turns in radians,
-// positive = left), then straight on.
-struct ArcPath {
-  double headingStart;
-  double straight;
-  double radius;
-  double firstTurn;
-  double secondTurn;
-
-  Vec3 at(double s) const {
-    Vec3 p = Vec3::Zero();
-    double heading = headingStart;
-    auto run = [&](double length) {
-      const double l = std::min(length, s);
-      p += l * Vec3(std::cos(heading), std::sin(heading), 0.0);
-      s -= l;
-    };
-    auto arc = [&](double turn) {
-      const double l = std::min(radius * std::fabs(turn), s);
-      const double sign = turn > 0 ? 1.0 : -1.0;
-      const Vec3 centre = p + sign * radius * Vec3(-std::sin(heading), std::cos(heading), 0.0);
-      const double start = std::atan2(p.y() - centre.y(), p.x() - centre.x());
-      const double end = start + sign * l / radius;
-      p = centre + radius * Vec3(std::cos(end), std::sin(end), 0.0);
-      heading += sign * l / radius;
-      s -= l;
-    };
-    run(straight);
-    if (s > 0) arc(firstTurn);
-    if (s > 0) arc(secondTurn);
-    if (s > 0) run(s);
-    return p;
-  }
-};
-
 constexpr double kPi = 3.14159265358979323846;
-// Pull along the rope for 1 m, then an S-bend: left 90° and right 180° on 1.2 m radii.
-const ArcPath kSBend{0.0, 1.0, 1.2, 0.5 * kPi, -kPi};
-// Much harder: pulled sideways, then a 270° loop and a 180° counter-turn on 1.5 m radii.
-const ArcPath kLoop{0.5 * kPi, 1.0, 1.5, 1.5 * kPi, -kPi};
+const demos::ArcPath kSBend = demos::sBendPath();
+const demos::ArcPath kLoop = demos::loopPath();
 
 struct PathRun {
   std::vector<int> counts;

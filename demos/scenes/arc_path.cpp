@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rope/common/error.h"
+
 namespace rope::demos {
 
 namespace {
@@ -10,6 +12,7 @@ constexpr double kPi = 3.14159265358979323846;
 }
 
 Vec3 ArcPath::at(double s) const {
+  requireNonNegative("s", s);
   Vec3 p = Vec3::Zero();
   double heading = headingStart;
   auto run = [&](double length) {

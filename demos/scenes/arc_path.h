@@ -14,7 +14,8 @@ struct ArcPath {
   double firstTurn = 0.0;     // rad, positive = left
   double secondTurn = 0.0;    // rad
 
-  // The point at arc length s >= 0 from the origin (z = 0).
+  // The point at arc length s >= 0 from the origin (z = 0). Throws InvalidArgument("s", ...) for a
+  // negative or non-finite s.
   Vec3 at(double s) const;
 };
 

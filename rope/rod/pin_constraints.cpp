@@ -7,11 +7,14 @@ namespace rope {
 
 bool ConstrainedSolver::solve(const SymmetricBandedMatrix& factor, const std::vector<ConstraintRows>& rows,
                               double* x) {
+  ready_ = false;
   const int size = factor.size();
   factor.forwardSubstitute(x, 0);  // y = L^-1 r
   const int columns = 3 * static_cast<int>(rows.size());
+  columns_ = columns;
   if (columns == 0) {
     factor.backSubstitute(x);
+    ready_ = true;
     return true;
   }
   const size_t total = static_cast<size_t>(columns) * static_cast<size_t>(size);
@@ -60,7 +63,29 @@ bool ConstrainedSolver::solve(const SymmetricBandedMatrix& factor, const std::ve
     for (int i = start_[static_cast<size_t>(r)]; i < size; ++i) x[i] -= zr[i] * l;
   }
   factor.backSubstitute(x);
+  ready_ = true;
   return true;
+}
+
+void ConstrainedSolver::solveHomogeneous(const SymmetricBandedMatrix& factor, double* x, int firstRow) {
+  const int size = factor.size();
+  factor.forwardSubstitute(x, firstRow);
+  if (columns_ > 0) {
+    // lambda = (Z^T Z)^-1 Z^T y, the multipliers that keep G dv = 0.
+    for (int r = 0; r < columns_; ++r) {
+      const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
+      double projected = 0.0;
+      for (int i = std::max(start_[static_cast<size_t>(r)], firstRow); i < size; ++i) projected += zr[i] * x[i];
+      lambda_(r) = projected;
+    }
+    lambda_ = llt_.solve(lambda_);
+    for (int r = 0; r < columns_; ++r) {
+      const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
+      const double l = lambda_(r);
+      for (int i = start_[static_cast<size_t>(r)]; i < size; ++i) x[i] -= zr[i] * l;
+    }
+  }
+  factor.backSubstitute(x);
 }
 
 }  // namespace rope

@@ -43,13 +43,25 @@ class ConstrainedSolver {
   // its first compute()).
   ConstrainedSolver() = default;
   ConstrainedSolver(const ConstrainedSolver&) {}
-  ConstrainedSolver& operator=(const ConstrainedSolver&) { return *this; }
+  ConstrainedSolver& operator=(const ConstrainedSolver&) {
+    ready_ = false;
+    return *this;
+  }
   // factor: factorised 3n x 3n system; x: right-hand side r on entry, dv on return.
   // Returns false if the Schur complement is not positive definite (dependent pins) or not finite;
   // x is then unspecified (the caller keeps its own state).
   bool solve(const SymmetricBandedMatrix& factor, const std::vector<ConstraintRows>& rows, double* x);
+  // After a successful solve() with the same factor: x <- the pinned response to the right-hand side x
+  // with the pins' right-hand sides c = 0 (the linear part of solve(), reusing its Schur factor). Used
+  // for extra impulses whose effect must respect the pins. Solving from the first non-zero row of x
+  // (firstRow) skips work for loads near the far end.
+  void solveHomogeneous(const SymmetricBandedMatrix& factor, double* x, int firstRow = 0);
+  // Whether solveHomogeneous may be called (a solve() succeeded and this is not a copy made since).
+  bool ready() const { return ready_; }
 
  private:
+  int columns_ = 0;
+  bool ready_ = false;
   std::vector<double> z_;        // 3m columns of length N
   std::vector<int> start_;       // first non-zero row of each column
   Eigen::MatrixXd schur_;

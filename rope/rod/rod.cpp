@@ -206,11 +206,13 @@ double Rod::gravityEnergy() const {
 void Rod::setControlPoints(const PointList& points) {
   requirePoints("points", points, points_.size());
   points_ = points;
+  trialValid_ = false;
 }
 
 void Rod::setVelocities(const PointList& velocities) {
   requirePoints("velocities", velocities, velocities_.size());
   velocities_ = velocities;
+  trialValid_ = false;
 }
 
 // ---- pins ----
@@ -236,6 +238,7 @@ int Rod::pin(double s, const Vec3& target) {
   added.parameter = s;
   added.target = target;
   pins_.push_back(added);
+  trialValid_ = false;
   return added.id;
 }
 
@@ -248,11 +251,13 @@ void Rod::setPinTarget(int id, const Vec3& target) {
   const int index = findPin(id);
   requireFiniteVector("target", target);
   pins_[static_cast<size_t>(index)].target = target;
+  trialValid_ = false;
 }
 
 void Rod::releasePin(int id) {
   const int index = findPin(id);
   pins_.erase(pins_.begin() + index);
+  trialValid_ = false;
 }
 
 // ---- loads ----
@@ -261,12 +266,14 @@ void Rod::addForce(double s, const Vec3& force) {
   validateParameter(s);
   requireFiniteVector("force", force);
   loads_.push_back({s, force, false});
+  trialValid_ = false;
 }
 
 void Rod::addImpulse(double s, const Vec3& impulse) {
   validateParameter(s);
   requireFiniteVector("impulse", impulse);
   loads_.push_back({s, impulse, true});
+  trialValid_ = false;
 }
 
 void Rod::addSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
@@ -277,28 +284,102 @@ void Rod::addSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffnes
   requireFiniteMatrix("damping", damping);
   // Only the symmetric part is meaningful for a potential/dissipative interaction.
   springs_.push_back({s, force, 0.5 * (stiffness + stiffness.transpose()), 0.5 * (damping + damping.transpose())});
+  trialValid_ = false;
 }
 
 void Rod::clearLoads() {
   loads_.clear();
   springs_.clear();
+  markedInteractions_.clear();
+  trialValid_ = false;
 }
 
 // ---- step ----
 
 StepReport Rod::step(double h) {
+  StepReport report = solveTrial(h);
+  if (report.ok) return commitTrial();
+  clearLoads();
+  report.controlPoints = controlPointCount();
+  return report;
+}
+
+StepReport Rod::solveTrial(double h) {
   requirePositive("h", h);
   StepReport report;
+  trialValid_ = false;
+  if (assembleAndSolve(h, report)) {
+    trialValid_ = true;
+    trialStep_ = h;
+  }
+  report.controlPoints = controlPointCount();
+  return report;
+}
+
+const PointList& Rod::trialVelocities() const {
+  if (!trialValid_) throw InvalidArgument("trial", "none", "solveTrial() must have succeeded since the last change");
+  return newVelocities_;
+}
+
+Vec3 Rod::trialVelocity(double s) const {
+  validateParameter(s);
+  return curvePosition(knots_, trialVelocities(), s);
+}
+
+void Rod::trialImpulseResponse(double s, int axis, double* response) const {
+  validateParameter(s);
+  if (axis < 0 || axis > 2) throw InvalidArgument("axis", std::to_string(axis), "must be 0, 1 or 2");
+  if (!trialValid_ || !solver_.ready()) {
+    throw InvalidArgument("trial", "none", "solveTrial() must have succeeded on this rod since the last change");
+  }
+  const int n = controlPointCount();
+  const int d = degree();
+  const int k = knots_.findSpan(s);
+  BasisValues basis;
+  evaluateBasis(knots_, k, s, 0, basis);
+  const int first = k - d;
+  std::fill(response, response + 3 * n, 0.0);
+  for (int a = 0; a <= d; ++a) response[3 * (first + a) + axis] = basis.d[0][static_cast<size_t>(a)];
+  // The scratch solver is logically const here: it only reuses the trial's Schur factor.
+  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous(system_, response, 3 * first);
+}
+
+void Rod::correctTrial(const double* dv) {
+  if (!trialValid_) throw InvalidArgument("trial", "none", "solveTrial() must have succeeded since the last change");
+  const int n = controlPointCount();
+  for (int i = 0; i < n; ++i) {
+    const size_t u = static_cast<size_t>(i);
+    const Vec3 change(dv[3 * u], dv[3 * u + 1], dv[3 * u + 2]);
+    newVelocities_[u] += change;
+    newPoints_[u] += trialStep_ * change;
+  }
+}
+
+void Rod::markInteraction(double s) {
+  validateParameter(s);
+  markedInteractions_.push_back(s);
+}
+
+StepReport Rod::commitTrial() {
+  if (!trialValid_) throw InvalidArgument("trial", "none", "solveTrial() must have succeeded since the last change");
+  StepReport report;
+  if (!allFinite(newPoints_) || !allFinite(newVelocities_)) {
+    // A correction (correctTrial) made the trial non-finite: keep the state, as for a failed solve.
+    report.ok = false;
+    report.failure = "the step produced a non-finite state";
+    clearLoads();
+    report.controlPoints = controlPointCount();
+    return report;
+  }
   interactions_.clear();
   for (const PointLoad& load : loads_) interactions_.push_back(load.parameter);
   for (const Spring& spring : springs_) interactions_.push_back(spring.parameter);
-  if (assembleAndSolve(h, report)) {
-    points_.swap(newPoints_);
-    velocities_.swap(newVelocities_);
-    for (const Pin& p : pins_) interactions_.push_back(p.parameter);
-    adapt(report);
-  }
+  interactions_.insert(interactions_.end(), markedInteractions_.begin(), markedInteractions_.end());
+  points_.swap(newPoints_);
+  velocities_.swap(newVelocities_);
+  for (const Pin& p : pins_) interactions_.push_back(p.parameter);
   clearLoads();
+  adapt(report);
   report.controlPoints = controlPointCount();
   return report;
 }

@@ -133,8 +133,34 @@ class Rod {
                  const Eigen::Matrix3d& damping);
   void clearLoads();
 
-  // One step of h seconds (finite, > 0, else InvalidArgument "h").
+  // One step of h seconds (finite, > 0, else InvalidArgument "h"): solveTrial(h), then commitTrial()
+  // if the trial succeeded, else the loads are dropped and the rod is unchanged.
   StepReport step(double h);
+
+  // ---- split step, for solvers that couple several rods (rope/rod/coupled_solve.h) ----
+  // solveTrial assembles and factorises the step system with the queued loads, springs and pins and
+  // solves for the end-of-step state without changing the rod: positions, velocities and knots stay
+  // as they are until commitTrial(). The queued loads stay queued (clearLoads() drops them and the
+  // trial). Returns report.ok == false (with report.failure) on numerical failure.
+  StepReport solveTrial(double h);
+  bool hasTrial() const { return trialValid_; }
+  double trialStep() const { return trialStep_; }
+  // End-of-step control-point velocities and the velocity field at s of the trial (throws
+  // InvalidArgument("trial", ...) without one).
+  const PointList& trialVelocities() const;
+  Vec3 trialVelocity(double s) const;
+  // The change of the trial's control-point velocities (3n doubles, x y z per point) that an extra
+  // impulse of 1 N s along axis (0..2) at C(s) would cause, through the same factorised system with
+  // the pins still held: the columns of P J^T in coupled_solve.h. O(n) each.
+  void trialImpulseResponse(double s, int axis, double* response) const;
+  // Adds dv (3n doubles) to the trial velocities (and h dv to its positions): the effect of extra
+  // impulses computed with trialImpulseResponse.
+  void correctTrial(const double* dv);
+  // A knot at s after the coming commit, as for a load (adaptivity's interaction criterion).
+  void markInteraction(double s);
+  // Makes the trial the rod's state, runs adaptivity and clears the loads. Throws
+  // InvalidArgument("trial", ...) without a trial.
+  StepReport commitTrial();
 
   // ---- explicit refinement and cutting ----
   // Exact insertion ([A] §3.1): positions and velocities along the curve do not change. Explicit edits
@@ -193,6 +219,9 @@ class Rod {
   std::vector<double> bend_;
   std::vector<int> spans_;
   std::vector<double> interactions_;
+  std::vector<double> markedInteractions_;
+  bool trialValid_ = false;
+  double trialStep_ = 0.0;
 };
 
 }  // namespace rope

@@ -14,6 +14,7 @@ namespace rope {
 
 void Rod::insertKnotUnchecked(double s) {
   const KnotInsertion plan = planKnotInsertion(knots_, s);
+  trialValid_ = false;
   knots_.insertValue(s);
   // The same linear map for every per-control-point field: the curve, its velocity field and the rest
   // metric are exactly unchanged, so mass and energies are too.
@@ -42,6 +43,7 @@ RemovalReport Rod::removeKnot(double s) {
 }
 
 void Rod::applyRemoval(const KnotRemoval& plan) {
+  trialValid_ = false;
   knots_.eraseAt(plan.knotIndex);
   plan.apply(points_);
   plan.apply(velocities_);

@@ -1,0 +1,182 @@
+#include "rope/rod/coupled_solve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "rope/common/error.h"
+#include "rope/spline/bspline_basis.h"
+
+namespace rope {
+
+namespace {
+
+void requireParameterOn(const Rod& rod, const std::string& name, double s) {
+  requireFinite(name, s);
+  if (s < rod.beginParameter() || s > rod.endParameter()) {
+    throw InvalidArgument(name, formatValue(s), "must be within its rod's parameter range [" +
+                                                    formatValue(rod.beginParameter()) + ", " +
+                                                    formatValue(rod.endParameter()) + "]");
+  }
+}
+
+}  // namespace
+
+int CoupledSolve::pointIndex(int rod, double s) {
+  for (size_t p = 0; p < points_.size(); ++p) {
+    if (points_[p].rod == rod && points_[p].s == s) return static_cast<int>(p);
+  }
+  const Rod& owner = *rods_[static_cast<size_t>(rod)];
+  Point point;
+  point.rod = rod;
+  point.s = s;
+  const KnotVector& knots = owner.knots();
+  const int k = knots.findSpan(s);
+  BasisValues basis;
+  evaluateBasis(knots, k, s, 0, basis);
+  point.first = k - knots.degree();
+  point.count = knots.degree() + 1;
+  for (int a = 0; a < point.count; ++a) point.basis[a] = basis.d[0][static_cast<size_t>(a)];
+  const int n3 = 3 * owner.controlPointCount();
+  point.response.resize(static_cast<size_t>(3 * n3));
+  for (int axis = 0; axis < 3; ++axis) owner.trialImpulseResponse(s, axis, &point.response[static_cast<size_t>(axis * n3)]);
+  points_.push_back(std::move(point));
+  return static_cast<int>(points_.size()) - 1;
+}
+
+Eigen::Matrix3d CoupledSolve::crossResponse(int p, int q) const {
+  const Point& a = points_[static_cast<size_t>(p)];
+  const Point& b = points_[static_cast<size_t>(q)];
+  Eigen::Matrix3d y = Eigen::Matrix3d::Zero();
+  if (a.rod != b.rod) return y;
+  const size_t n3 = b.response.size() / 3;
+  for (int column = 0; column < 3; ++column) {
+    const double* r = &b.response[static_cast<size_t>(column) * n3];
+    for (int i = 0; i < a.count; ++i) {
+      const double weight = a.basis[i];
+      const double* block = r + 3 * (a.first + i);
+      y(0, column) += weight * block[0];
+      y(1, column) += weight * block[1];
+      y(2, column) += weight * block[2];
+    }
+  }
+  return y;
+}
+
+void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<PointCoupling>& couplings) {
+  for (size_t i = 0; i < rods.size(); ++i) {
+    const std::string name = "rods[" + std::to_string(i) + "]";
+    if (rods[i] == nullptr) throw InvalidArgument(name, "null", "must be a rod");
+    if (!rods[i]->hasTrial()) throw InvalidArgument(name, "no trial", "solveTrial() must have succeeded");
+  }
+  const int rodCount = static_cast<int>(rods.size());
+  for (size_t k = 0; k < couplings.size(); ++k) {
+    const PointCoupling& c = couplings[k];
+    const std::string name = "couplings[" + std::to_string(k) + "]";
+    if (c.rodA < 0 || c.rodA >= rodCount) throw InvalidArgument(name + ".rodA", std::to_string(c.rodA), "no such rod");
+    if (c.rodB < 0 || c.rodB >= rodCount) throw InvalidArgument(name + ".rodB", std::to_string(c.rodB), "no such rod");
+    requireParameterOn(*rods[static_cast<size_t>(c.rodA)], name + ".sA", c.sA);
+    requireParameterOn(*rods[static_cast<size_t>(c.rodB)], name + ".sB", c.sB);
+    if (c.rodA == c.rodB && c.sA == c.sB) throw InvalidArgument(name + ".sB", formatValue(c.sB), "must differ from sA on the same rod");
+  }
+
+  rods_ = rods;
+  couplings_ = couplings;
+  points_.clear();
+  const size_t m = couplings.size();
+  pointA_.resize(m);
+  pointB_.resize(m);
+  trialChange_.resize(m);
+  for (size_t k = 0; k < m; ++k) {
+    const PointCoupling& c = couplings[k];
+    pointA_[k] = pointIndex(c.rodA, c.sA);
+    pointB_[k] = pointIndex(c.rodB, c.sB);
+    const Rod& a = *rods[static_cast<size_t>(c.rodA)];
+    const Rod& b = *rods[static_cast<size_t>(c.rodB)];
+    trialChange_[k] = (a.trialVelocity(c.sA) - a.velocity(c.sA)) - (b.trialVelocity(c.sB) - b.velocity(c.sB));
+  }
+
+  // Z = J P J^T, block (k, l) = Y(a_k, a_l) - Y(a_k, b_l) - Y(b_k, a_l) + Y(b_k, b_l). Symmetric.
+  const int size = 3 * static_cast<int>(m);
+  z_.resize(size, size);
+  for (size_t k = 0; k < m; ++k) {
+    for (size_t l = 0; l <= k; ++l) {
+      const Eigen::Matrix3d block = crossResponse(pointA_[k], pointA_[l]) - crossResponse(pointA_[k], pointB_[l]) -
+                                    crossResponse(pointB_[k], pointA_[l]) + crossResponse(pointB_[k], pointB_[l]);
+      z_.block<3, 3>(static_cast<int>(3 * k), static_cast<int>(3 * l)) = block;
+      z_.block<3, 3>(static_cast<int>(3 * l), static_cast<int>(3 * k)) = block.transpose();
+    }
+  }
+}
+
+bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vector<Vec3>& impulses) {
+  const size_t m = couplings_.size();
+  if (laws.size() != m) {
+    throw InvalidArgument("laws.size()", std::to_string(laws.size()), "must equal the coupling count " + std::to_string(m));
+  }
+  impulses.assign(m, Vec3::Zero());
+  if (m == 0) return true;
+  const int size = 3 * static_cast<int>(m);
+  system_.setIdentity(size, size);
+  rhs_.resize(size);
+  for (size_t k = 0; k < m; ++k) {
+    const Eigen::Matrix3d& w = laws[k].admittance;
+    if (!w.allFinite() || !laws[k].impulse.allFinite()) return false;
+    const int row = static_cast<int>(3 * k);
+    system_.middleRows(row, 3) += w * z_.middleRows(row, 3);
+    rhs_.segment<3>(row) = laws[k].impulse - w * trialChange_[k];
+  }
+  lu_.compute(system_);
+  const Eigen::VectorXd p = lu_.solve(rhs_);
+  if (!p.allFinite()) return false;
+  // I + W Z is similar to I + W^1/2 Z W^1/2 (eigenvalues >= 1): a residual far above round-off means
+  // the factorisation broke down, not that the system is ill-posed.
+  const double residual = (system_ * p - rhs_).norm();
+  if (!(residual <= 1e-8 * (rhs_.norm() + system_.norm() * p.norm()) + 1e-300)) return false;
+  for (size_t k = 0; k < m; ++k) impulses[k] = p.segment<3>(static_cast<int>(3 * k));
+  return true;
+}
+
+Vec3 CoupledSolve::relativeChange(int k, const std::vector<Vec3>& impulses) const {
+  Vec3 change = trialChange_[static_cast<size_t>(k)];
+  for (size_t l = 0; l < impulses.size(); ++l) {
+    change += z_.block<3, 3>(3 * k, static_cast<int>(3 * l)) * impulses[l];
+  }
+  return change;
+}
+
+void CoupledSolve::apply(const std::vector<Vec3>& impulses) {
+  if (impulses.size() != couplings_.size()) {
+    throw InvalidArgument("impulses.size()", std::to_string(impulses.size()),
+                          "must equal the coupling count " + std::to_string(couplings_.size()));
+  }
+  for (size_t r = 0; r < rods_.size(); ++r) {
+    Rod& rod = *rods_[r];
+    const size_t n3 = static_cast<size_t>(3 * rod.controlPointCount());
+    correction_.assign(n3, 0.0);
+    bool touched = false;
+    for (size_t k = 0; k < couplings_.size(); ++k) {
+      for (int side = 0; side < 2; ++side) {
+        const Point& point = points_[static_cast<size_t>(side == 0 ? pointA_[k] : pointB_[k])];
+        if (point.rod != static_cast<int>(r)) continue;
+        touched = true;
+        const Vec3 p = side == 0 ? impulses[k] : Vec3(-impulses[k]);
+        for (int axis = 0; axis < 3; ++axis) {
+          const double* column = &point.response[static_cast<size_t>(axis) * n3];
+          const double weight = p[axis];
+          for (size_t i = 0; i < n3; ++i) correction_[i] += weight * column[i];
+        }
+      }
+    }
+    if (!touched) continue;
+    rod.correctTrial(correction_.data());
+    for (size_t k = 0; k < couplings_.size(); ++k) {
+      if (impulses[k].isZero(0.0)) continue;  // a coupling that did not act needs no knot
+      const PointCoupling& c = couplings_[k];
+      if (c.rodA == static_cast<int>(r)) rod.markInteraction(c.sA);
+      if (c.rodB == static_cast<int>(r)) rod.markInteraction(c.sB);
+    }
+  }
+}
+
+}  // namespace rope

@@ -1,0 +1,90 @@
+#pragma once
+// Implicit point couplings between rods (rope self-contact and rope-rope contact), solved exactly on
+// top of the rods' own implicit steps.
+//
+// Each rod r has solved its trial step (Rod::solveTrial): A_r dv_r = r_r with its pins held. A
+// coupling k ties C_a(s_a) to C_b(s_b) (two rods, or two places on one rod) with an impulse p_k on a
+// (and -p_k on b) over the step that follows a linearised law
+//   p_k = e_k - W_k (w_k,new - w_k),   w = C'_a(s_a) - C'_b(s_b) velocity of a relative to b,
+// with e_k (N s) the impulse at the start-of-step state and W_k (kg, symmetric positive semidefinite)
+// = h^2 K_k + h D_k for a spring-damper K_k, D_k: the same backward-Euler linearisation the rod uses
+// for its own forces, so the coupling is as implicit as the rope. The coupled system
+//   (A + J^T W J) dv = r + J^T e,   J = [b_a(s_a) (x) I3, -b_b(s_b) (x) I3]
+// breaks the band (s_a and s_b are far apart) but J^T W J has rank <= 3 per coupling, so it is solved
+// by the Woodbury identity against the rods' existing factors: with P the pinned inverse of each A
+// (Rod::trialImpulseResponse) and Z = J P J^T (3m x 3m),
+//   (I + W Z) p = e - W J dv_trial,   dv = dv_trial + P J^T p.
+// Cost: 3 O(n) solves per coupling point, O(m^2) for Z, O(m^3) for the small dense solve (m couplings);
+// the rods' band and factor are untouched. Exactly momentum-conserving: the impulses are equal and
+// opposite by construction.
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include "rope/common/types.h"
+#include "rope/rod/rod.h"
+
+namespace rope {
+
+struct PointCoupling {
+  int rodA = 0;      // index into the rods given to CoupledSolve::prepare
+  double sA = 0.0;   // curve parameter on rod A
+  int rodB = 0;      // may equal rodA (self-contact); then sB != sA
+  double sB = 0.0;
+};
+
+struct CouplingLaw {
+  Vec3 impulse = Vec3::Zero();                             // e, N s, on A at the start-of-step state
+  Eigen::Matrix3d admittance = Eigen::Matrix3d::Zero();    // W = h^2 K + h D, kg, symmetric PSD
+};
+
+class CoupledSolve {
+ public:
+  // Computes every coupling point's pinned impulse response and Z. Every rod must hold a trial
+  // (Rod::solveTrial succeeded, nothing changed since). Throws InvalidArgument naming the coupling
+  // ("couplings[k].rodA", "couplings[k].sB", ...) for an index outside rods or a parameter outside
+  // its rod, and ("rods[i]") for a null rod or one without a trial; nothing is prepared then.
+  void prepare(const std::vector<Rod*>& rods, const std::vector<PointCoupling>& couplings);
+  int size() const { return static_cast<int>(couplings_.size()); }
+
+  // Relative velocity change of coupling k in the trial, w_trial - w (m/s).
+  const Vec3& trialRelativeChange(int k) const { return trialChange_[static_cast<size_t>(k)]; }
+
+  // Solves for the impulses p (N s, on A) under the given laws (one per coupling, same order).
+  // Returns false if the laws or the result are not finite or the small system is singular; the
+  // impulses are then unspecified. Can be called repeatedly with other laws (active sets, friction
+  // bounds) at O(m^3) each: the responses are kept.
+  bool solveImpulses(const std::vector<CouplingLaw>& laws, std::vector<Vec3>& impulses);
+  // The relative velocity change of coupling k at the end of the step with impulses p: w_new - w.
+  Vec3 relativeChange(int k, const std::vector<Vec3>& impulses) const;
+  // Adds the impulses' effect to the rods' trials (Rod::correctTrial) and marks the coupling points as
+  // interaction points (a knot there at commit, [A] §4).
+  void apply(const std::vector<Vec3>& impulses);
+
+ private:
+  struct Point {
+    int rod;
+    double s;
+    int first;              // first control point with b_i(s) != 0
+    double basis[kMaxDegree + 1];
+    int count;
+    std::vector<double> response;  // 3 columns of 3n: response to a unit impulse along x, y, z
+  };
+  int pointIndex(int rod, double s);
+  Eigen::Matrix3d crossResponse(int p, int q) const;  // B_p^T R_q (zero for different rods)
+
+  std::vector<Rod*> rods_;
+  std::vector<PointCoupling> couplings_;
+  std::vector<Point> points_;
+  std::vector<int> pointA_, pointB_;  // per coupling
+  std::vector<Vec3> trialChange_;
+  Eigen::MatrixXd z_;
+  Eigen::MatrixXd system_;
+  Eigen::VectorXd rhs_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  std::vector<double> correction_;
+};
+
+}  // namespace rope

@@ -1,0 +1,268 @@
+#include "rope/rod/coupled_solve.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "rope/common/error.h"
+#include "tests/rope/rod/rod_test_util.h"
+
+namespace rope {
+namespace {
+
+RodSettings settingsFor(int points) {
+  RodSettings settings;
+  settings.restLength = 1.0;
+  settings.linearDensity = 0.05;
+  settings.youngsModulus = 1e7;
+  settings.initialControlPoints = points;
+  settings.adaptive = false;  // keep the knots, so trials can be compared point by point
+  return settings;
+}
+
+// A bent, moving rod: positions and velocities off the straight line so every term is exercised.
+Rod bentRod(int points, const Vec3& offset, unsigned seed) {
+  Rod rod = Rod::fromSegment(settingsFor(points), offset, offset + Vec3(1.1, 0.0, 0.0));
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+  PointList q = rod.controlPoints();
+  PointList v = q;
+  for (size_t i = 0; i < q.size(); ++i) {
+    q[i] += Vec3(jitter(random), jitter(random), jitter(random));
+    v[i] = 10.0 * Vec3(jitter(random), jitter(random), jitter(random));
+  }
+  rod.setControlPoints(q);
+  rod.setVelocities(v);
+  return rod;
+}
+
+Eigen::Matrix3d randomAdmittance(std::mt19937& random, double scale) {
+  std::uniform_real_distribution<double> entry(-1.0, 1.0);
+  Eigen::Matrix3d root;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) root(r, c) = entry(random);
+  return scale * root * root.transpose();
+}
+
+struct TwoRods {
+  Rod a = bentRod(9, Vec3(0, 0, 0), 1);
+  Rod b = bentRod(12, Vec3(0, 0.02, 0.01), 2);
+  std::vector<PointCoupling> couplings;
+  std::vector<CouplingLaw> laws;
+  TwoRods() {
+    a.pin(a.beginParameter());                        // pins must keep holding under the coupling
+    b.pin(0.5 * b.endParameter(), Vec3(0.6, 0.05, 0));  // and a moving pin target
+    couplings = {{0, 0.3, 1, 0.31}, {0, 0.8, 1, 0.2}, {1, 0.1, 1, 0.9}, {0, 0.55, 0, 0.95}};
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> entry(-0.01, 0.01);
+    for (size_t k = 0; k < couplings.size(); ++k) {
+      CouplingLaw law;
+      law.impulse = Vec3(entry(random), entry(random), entry(random));
+      law.admittance = randomAdmittance(random, 0.02 * static_cast<double>(k + 1));
+      laws.push_back(law);
+    }
+  }
+};
+
+TEST(CoupledSolve, CorrectionIsExactlyTheResponseToTheImpulses) {
+  TwoRods setup;
+  const double h = 1.0 / 240.0;
+  ASSERT_TRUE(setup.a.solveTrial(h).ok);
+  ASSERT_TRUE(setup.b.solveTrial(h).ok);
+  CoupledSolve solve;
+  solve.prepare({&setup.a, &setup.b}, setup.couplings);
+  std::vector<Vec3> impulses;
+  ASSERT_TRUE(solve.solveImpulses(setup.laws, impulses));
+  solve.apply(impulses);
+
+  // The same impulses given to the rods as ordinary loads, solved directly: identical end state.
+  Rod directA = setup.a, directB = setup.b;
+  directA.clearLoads();
+  directB.clearLoads();
+  for (size_t k = 0; k < setup.couplings.size(); ++k) {
+    const PointCoupling& c = setup.couplings[k];
+    (c.rodA == 0 ? directA : directB).addImpulse(c.sA, impulses[k]);
+    (c.rodB == 0 ? directA : directB).addImpulse(c.sB, -impulses[k]);
+  }
+  ASSERT_TRUE(directA.solveTrial(h).ok);
+  ASSERT_TRUE(directB.solveTrial(h).ok);
+  const PointList& va = setup.a.trialVelocities();
+  const PointList& vb = setup.b.trialVelocities();
+  for (size_t i = 0; i < va.size(); ++i) EXPECT_LT((va[i] - directA.trialVelocities()[i]).norm(), 1e-11) << i;
+  for (size_t i = 0; i < vb.size(); ++i) EXPECT_LT((vb[i] - directB.trialVelocities()[i]).norm(), 1e-11) << i;
+}
+
+TEST(CoupledSolve, ImpulsesSatisfyTheirLawAtTheEndOfTheStep) {
+  TwoRods setup;
+  const double h = 1.0 / 240.0;
+  ASSERT_TRUE(setup.a.solveTrial(h).ok);
+  ASSERT_TRUE(setup.b.solveTrial(h).ok);
+  CoupledSolve solve;
+  solve.prepare({&setup.a, &setup.b}, setup.couplings);
+  std::vector<Vec3> impulses;
+  ASSERT_TRUE(solve.solveImpulses(setup.laws, impulses));
+  std::vector<Vec3> predicted;
+  for (int k = 0; k < solve.size(); ++k) predicted.push_back(solve.relativeChange(k, impulses));
+  solve.apply(impulses);
+  const Rod* rods[2] = {&setup.a, &setup.b};
+  for (size_t k = 0; k < setup.couplings.size(); ++k) {
+    const PointCoupling& c = setup.couplings[k];
+    const Rod& a = *rods[c.rodA];
+    const Rod& b = *rods[c.rodB];
+    // w_new - w measured on the corrected trials ...
+    const Vec3 change = (a.trialVelocity(c.sA) - a.velocity(c.sA)) - (b.trialVelocity(c.sB) - b.velocity(c.sB));
+    EXPECT_LT((change - predicted[k]).norm(), 1e-11 * (1.0 + change.norm())) << k;
+    // ... is what the law asked for: p = e - W (w_new - w).
+    const Vec3 law = setup.laws[k].impulse - setup.laws[k].admittance * change;
+    EXPECT_LT((impulses[k] - law).norm(), 1e-12) << k;
+    EXPECT_GT(impulses[k].norm(), 1e-5) << "coupling " << k << " does nothing: the test would be vacuous";
+  }
+  // The pins still hold exactly at the end of the step.
+  const Pin& pinA = setup.a.pins()[0];
+  EXPECT_LT((setup.a.position(pinA.parameter) + h * setup.a.trialVelocity(pinA.parameter) - pinA.target).norm(), 1e-12);
+  const Pin& pinB = setup.b.pins()[0];
+  EXPECT_LT((setup.b.position(pinB.parameter) + h * setup.b.trialVelocity(pinB.parameter) - pinB.target).norm(), 1e-12);
+}
+
+TEST(CoupledSolve, ConservesMomentumBetweenFreeRods) {
+  Rod a = bentRod(10, Vec3(0, 0, 0), 3);
+  Rod b = bentRod(10, Vec3(0, 0.01, 0), 4);
+  const double h = 1.0 / 120.0;
+  ASSERT_TRUE(a.solveTrial(h).ok);
+  ASSERT_TRUE(b.solveTrial(h).ok);
+  const auto trialMomentum = [](const Rod& rod) {
+    Rod copy = rod;
+    copy.commitTrial();
+    return copy.momentum();
+  };
+  const Vec3 before = trialMomentum(a) + trialMomentum(b);
+  CoupledSolve solve;
+  solve.prepare({&a, &b}, {{0, 0.5, 1, 0.5}, {0, 0.2, 1, 0.7}, {0, 0.1, 0, 0.9}});
+  std::mt19937 random(11);
+  std::vector<CouplingLaw> laws(3);
+  for (CouplingLaw& law : laws) {
+    law.impulse = Vec3(0.01, -0.02, 0.005);
+    law.admittance = randomAdmittance(random, 1.0);  // stiff against the rods' mass (0.05 kg)
+  }
+  std::vector<Vec3> impulses;
+  ASSERT_TRUE(solve.solveImpulses(laws, impulses));
+  solve.apply(impulses);
+  const Vec3 after = trialMomentum(a) + trialMomentum(b);
+  EXPECT_LT((after - before).norm(), 1e-13) << "before " << before.transpose() << " after " << after.transpose();
+  // The coupling did move each rod on its own.
+  EXPECT_GT((trialMomentum(a) - trialMomentum(b)).norm(), 1e-4);
+}
+
+TEST(CoupledSolve, StiffSpringStopsTheRelativeMotion) {
+  // W -> infinity along n is a rigid normal constraint: the relative normal velocity change cancels
+  // the approach (e = 0 means "no force at the start state").
+  Rod a = bentRod(10, Vec3(0, 0, 0), 5);
+  Rod b = bentRod(10, Vec3(0, 0.01, 0), 6);
+  const double h = 1.0 / 240.0;
+  ASSERT_TRUE(a.solveTrial(h).ok);
+  ASSERT_TRUE(b.solveTrial(h).ok);
+  CoupledSolve solve;
+  solve.prepare({&a, &b}, {{0, 0.5, 1, 0.5}});
+  const Vec3 n(0, 1, 0);
+  CouplingLaw law;
+  law.admittance = 1e9 * n * n.transpose();
+  std::vector<Vec3> impulses;
+  ASSERT_TRUE(solve.solveImpulses({law}, impulses));
+  EXPECT_LT(std::abs(n.dot(solve.relativeChange(0, impulses))), 1e-8 * (1.0 + solve.trialRelativeChange(0).norm()));
+  EXPECT_GT(std::abs(n.dot(solve.trialRelativeChange(0))), 1e-3);
+}
+
+TEST(CoupledSolve, RejectsBadInputAndLeavesRodsAlone) {
+  Rod a = bentRod(8, Vec3(0, 0, 0), 8);
+  EXPECT_THROW(
+      {
+        try {
+          CoupledSolve().prepare({&a}, {{0, 0.1, 0, 0.9}});
+        } catch (const InvalidArgument& e) {
+          EXPECT_EQ(e.parameter(), "rods[0]");  // no trial yet
+          throw;
+        }
+      },
+      InvalidArgument);
+  ASSERT_TRUE(a.solveTrial(0.01).ok);
+  const test::RodSnapshot before(a);
+  const auto expectParameter = [&](const std::vector<PointCoupling>& couplings, const std::string& name) {
+    try {
+      CoupledSolve().prepare({&a}, couplings);
+      ADD_FAILURE() << "accepted " << name;
+    } catch (const InvalidArgument& e) {
+      EXPECT_EQ(e.parameter(), name);
+    }
+  };
+  expectParameter({{1, 0.1, 0, 0.9}}, "couplings[0].rodA");
+  expectParameter({{0, 0.1, 0, 0.9}, {0, 0.1, -1, 0.9}}, "couplings[1].rodB");
+  expectParameter({{0, 1.5, 0, 0.9}}, "couplings[0].sA");
+  expectParameter({{0, 0.1, 0, std::numeric_limits<double>::quiet_NaN()}}, "couplings[0].sB");
+  expectParameter({{0, 0.4, 0, 0.4}}, "couplings[0].sB");
+  EXPECT_TRUE(test::sameState(before, test::RodSnapshot(a)));
+  EXPECT_TRUE(a.hasTrial());
+
+  CoupledSolve solve;
+  solve.prepare({&a}, {{0, 0.1, 0, 0.9}});
+  std::vector<Vec3> impulses;
+  CouplingLaw bad;
+  bad.admittance(0, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(solve.solveImpulses({bad}, impulses));  // reported, not propagated
+  EXPECT_THROW(solve.solveImpulses({}, impulses), InvalidArgument);
+}
+
+TEST(RodSplitStep, StepEqualsTrialThenCommitBitwise) {
+  Rod stepped = bentRod(12, Vec3(0, 1, 0), 9);
+  stepped.pin(0.0);
+  Rod split = stepped;
+  for (int i = 0; i < 20; ++i) {
+    stepped.addForce(0.7, Vec3(0.1, 0.2, 0.0));
+    split.addForce(0.7, Vec3(0.1, 0.2, 0.0));
+    const StepReport a = stepped.step(1.0 / 240.0);
+    const StepReport trial = split.solveTrial(1.0 / 240.0);
+    ASSERT_TRUE(trial.ok);
+    EXPECT_TRUE(split.hasTrial());
+    const StepReport b = split.commitTrial();
+    EXPECT_FALSE(split.hasTrial());
+    EXPECT_EQ(a.insertions, b.insertions);
+    ASSERT_TRUE(test::sameState(test::RodSnapshot(stepped), test::RodSnapshot(split))) << "step " << i;
+  }
+}
+
+TEST(RodSplitStep, TrialLeavesTheRodUnchangedAndChangesInvalidateIt) {
+  Rod rod = bentRod(8, Vec3(0, 0, 0), 10);
+  const test::RodSnapshot before(rod);
+  ASSERT_TRUE(rod.solveTrial(0.01).ok);
+  EXPECT_TRUE(test::sameState(before, test::RodSnapshot(rod)));
+  EXPECT_NE(rod.trialVelocities()[3], rod.velocities()[3]);  // gravity acted in the trial
+  rod.addForce(0.5, Vec3(1, 0, 0));  // a new load makes the trial stale
+  EXPECT_FALSE(rod.hasTrial());
+  EXPECT_THROW(rod.commitTrial(), InvalidArgument);
+  EXPECT_THROW(rod.trialVelocities(), InvalidArgument);
+  std::vector<double> response(static_cast<size_t>(3 * rod.controlPointCount()));
+  EXPECT_THROW(rod.trialImpulseResponse(0.5, 0, response.data()), InvalidArgument);
+  ASSERT_TRUE(rod.solveTrial(0.01).ok);
+  EXPECT_THROW(rod.trialImpulseResponse(0.5, 3, response.data()), InvalidArgument);
+  EXPECT_THROW(rod.trialImpulseResponse(2.0, 0, response.data()), InvalidArgument);
+  EXPECT_THROW(rod.markInteraction(-1.0), InvalidArgument);
+  rod.clearLoads();
+  EXPECT_FALSE(rod.hasTrial());
+  EXPECT_TRUE(test::sameState(before, test::RodSnapshot(rod)));
+}
+
+TEST(RodSplitStep, MarkedInteractionGetsAKnot) {
+  RodSettings settings = settingsFor(8);
+  settings.adaptive = true;
+  Rod rod = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  rod.pin(0.0);
+  ASSERT_TRUE(rod.solveTrial(0.01).ok);
+  rod.markInteraction(0.4321);
+  const StepReport report = rod.commitTrial();
+  EXPECT_EQ(rod.knots().multiplicity(0.4321), 1);
+  EXPECT_GE(report.insertions, 1);
+}
+
+}  // namespace
+}  // namespace rope

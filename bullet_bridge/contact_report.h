@@ -26,6 +26,23 @@ struct RopeContactRecord {
   bool active = false;             // false: a speculative contact that did not act in this substep
 };
 
+// One contact between two ropes, or between two parts of one rope (self-contact): capsules whose axes
+// came closer than the sum of the radii (plus the speculative margin), coupled implicitly in the
+// ropes' step (rope_rope_contact.h).
+struct RopePairContactRecord {
+  const RopeObject* ropeA = nullptr;
+  const RopeObject* ropeB = nullptr;  // == ropeA for self-contact
+  double sA = 0.0;                    // curve parameters of the contact points
+  double sB = 0.0;
+  btVector3 pointA{0, 0, 0};          // C_A(sA), C_B(sB) at the start of the substep, world frame, m
+  btVector3 pointB{0, 0, 0};
+  btVector3 normal{0, 0, 1};          // unit, from B into A
+  double depth = 0.0;                 // overlap of the two tubes, m (> 0 overlapping, < 0 speculative gap)
+  btVector3 force{0, 0, 0};           // force on A over the substep, N (B felt -force)
+  bool sticking = false;              // tangential slip below the friction regularisation velocity
+  bool active = false;                // false: a speculative contact that did not act, or was released
+};
+
 struct RopeStepRecord {
   const RopeObject* rope = nullptr;
   bool ok = true;                // false: the rod step failed and the rope kept its state
@@ -38,6 +55,8 @@ struct RopeStepRecord {
   int insertions = 0;            // knots inserted by the step's adaptivity
   int removals = 0;              // knots removed by the step's adaptivity
   int solvePasses = 0;           // rod solves in the substep (contact active set, contact_response.h)
+  int ropeContacts = 0;          // active rope-rope and self-contacts this rope takes part in
+  double maxSelfOverlap = 0.0;   // m, deepest overlap with itself or another rope at the start of the substep
   // Wall-clock time of the rope's parts of the substep, s (profiling only; not deterministic).
   double contactSeconds = 0.0;   // candidate recheck, narrowphase and contact law
   double solveSeconds = 0.0;     // rod step (implicit solve, adaptivity) and body impulses
@@ -49,8 +68,12 @@ struct ContactReport {
   double timeStep = 0;  // s
   std::vector<RopeContactRecord> contacts;
   std::vector<RopeStepRecord> ropes;
+  std::vector<RopePairContactRecord> ropeContacts;  // rope-rope and self-contacts
+  double ropeContactSeconds = 0.0;  // rope-rope narrowphase and coupled solve, s (profiling)
+  const char* ropeContactFailure = "";  // non-empty: the rope-rope solve failed this substep (static text)
   double pairScanSeconds = 0.0;  // reading Bullet's pair cache for rope candidates, s (profiling)
   double maxPenetration() const;  // over all ropes, m
+  double maxSelfOverlap() const;  // over all rope-rope and self-contacts, m
 };
 
 }  // namespace rope::bullet

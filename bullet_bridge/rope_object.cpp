@@ -276,6 +276,11 @@ void RopeObject::gatherContacts(const std::vector<const btCollisionObject*>& can
 }
 
 void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates, double h) {
+  beginSubstep(candidates, h);
+  endSubstep(h);
+}
+
+void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
   contacts_.clear();
   inputs_.clear();
   pending_.clear();
@@ -316,24 +321,19 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
   const Clock::time_point solveStart = Clock::now();
   // Unilateral contact by a small active set: a contact whose force at the end of the step pulls the
   // rope onto the body (the rope left the surface during the step, or a speculative contact did not
-  // close) is dropped and the step is redone from a copy of the rod, at most kMaxSolvePasses times.
+  // close) is dropped and the trial step solved again, at most kMaxSolvePasses times. The rod itself
+  // does not change until endSubstep commits the last trial.
   constexpr int kMaxSolvePasses = 4;
   const bool mayRetry = lastStep_.contacts > 0;
-  if (mayRetry) {
-    if (backup_ == nullptr) {
-      backup_ = std::make_unique<Rod>(rod_);
-    } else {
-      *backup_ = rod_;
-    }
-  }
   StepReport report;
   for (int pass = 1;; ++pass) {
     lastStep_.solvePasses = pass;
+    rod_.clearLoads();
     for (const PendingSpring& pending : pending_) {
       if (pending.record >= 0 && !contacts_[static_cast<std::size_t>(pending.record)].active) continue;
       rod_.addSpring(pending.s, pending.spring.force, pending.spring.stiffness, pending.spring.damping);
     }
-    report = rod_.step(h);
+    report = rod_.solveTrial(h);
     if (!report.ok || !mayRetry || pass >= kMaxSolvePasses) break;
     std::vector<Vec3>& totals = forceTotals_;
     totals.assign(contacts_.size(), Vec3::Zero());
@@ -341,7 +341,7 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
       if (pending.record < 0) continue;
       if (!contacts_[static_cast<std::size_t>(pending.record)].active) continue;
       totals[static_cast<std::size_t>(pending.record)] +=
-          endOfStepForce(pending.spring, pending.velocity, rod_.velocity(pending.s), h);
+          endOfStepForce(pending.spring, pending.velocity, rod_.trialVelocity(pending.s), h);
     }
     bool changed = false;
     for (std::size_t i = 0; i < contacts_.size(); ++i) {
@@ -374,17 +374,23 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
       pending.spring.stiffness = pending.weight * spring.stiffness;
       pending.spring.damping = pending.weight * spring.damping;
     }
-    rod_ = *backup_;
   }
   lastStep_.ok = report.ok;
   lastStep_.failure = report.failure;
-  lastStep_.controlPoints = rod_.controlPointCount();
-  lastStep_.insertions = report.insertions;
-  lastStep_.removals = report.removals;
-  if (report.ok) {
+  if (!report.ok) rod_.clearLoads();  // the rod keeps its state; no trial for rope-rope contact
+  lastStep_.contactSeconds = std::chrono::duration<double>(solveStart - start).count();
+  lastStep_.solveSeconds = std::chrono::duration<double>(Clock::now() - solveStart).count();
+}
+
+void RopeObject::endSubstep(double h) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point commitStart = Clock::now();
+  if (lastStep_.ok && rod_.hasTrial()) {
+    // Forces from the final trial (rope-rope contact may have corrected it): exactly what the rope's
+    // implicit system integrated for each spring.
     for (const PendingSpring& pending : pending_) {
       if (pending.record >= 0 && !contacts_[static_cast<std::size_t>(pending.record)].active) continue;
-      const Vec3 force = endOfStepForce(pending.spring, pending.velocity, rod_.velocity(pending.s), h);
+      const Vec3 force = endOfStepForce(pending.spring, pending.velocity, rod_.trialVelocity(pending.s), h);
       if (pending.record >= 0) {
         contacts_[static_cast<std::size_t>(pending.record)].force += toBullet(force);
       } else {
@@ -399,19 +405,32 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
     for (RopeContactRecord& record : contacts_) {
       if (!record.active) continue;
       const Vec3 normal = toVec(record.normal);
-      const Vec3 slip = rod_.velocity(record.s) - pointVelocity(*record.body, record.point);
+      const Vec3 slip = rod_.trialVelocity(record.s) - pointVelocity(*record.body, record.point);
       record.sticking = (slip - normal * normal.dot(slip)).norm() < settings_.frictionVelocity;
     }
+    const StepReport report = rod_.commitTrial();
+    lastStep_.ok = report.ok;
+    lastStep_.failure = report.failure;
+    lastStep_.insertions = report.insertions;
+    lastStep_.removals = report.removals;
   } else {
-    for (RopeContactRecord& record : contacts_) record.active = false;
+    lastStep_.ok = false;
+    if (*lastStep_.failure == '\0') lastStep_.failure = "the rope's trial step was discarded";
+    rod_.clearLoads();
+  }
+  if (!lastStep_.ok) {
+    for (RopeContactRecord& record : contacts_) {
+      record.active = false;
+      record.force.setZero();
+    }
     lastStep_.contacts = 0;
   }
+  lastStep_.controlPoints = rod_.controlPointCount();
   pending_.clear();
   const Clock::time_point proxyStart = Clock::now();
   lastStep_.proxyOverflows = proxies_->updateBoxes(rod_, h, settings_.speculativeMargin);
   const Clock::time_point end = Clock::now();
-  lastStep_.contactSeconds = std::chrono::duration<double>(solveStart - start).count();
-  lastStep_.solveSeconds = std::chrono::duration<double>(proxyStart - solveStart).count();
+  lastStep_.solveSeconds += std::chrono::duration<double>(proxyStart - commitStart).count();
   lastStep_.proxySeconds = std::chrono::duration<double>(end - proxyStart).count();
 }
 

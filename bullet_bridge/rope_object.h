@@ -67,12 +67,24 @@ class RopeObject {
   const std::vector<RopeContactRecord>& contacts() const { return contacts_; }
   const RopeStepRecord& lastStep() const { return lastStep_; }
 
-  // One substep of h seconds against the candidate bodies (sorted, deterministic order); called by
-  // RopeWorld's action after Bullet's collision detection, solver and integration of the substep.
+  // One substep of h seconds against the candidate bodies (sorted, deterministic order), on its own:
+  // beginSubstep then endSubstep. RopeWorld's action calls the two halves itself, after Bullet's
+  // collision detection, solver and integration of the substep, with rope-rope contact in between.
   void substep(const std::vector<const btCollisionObject*>& candidates, double h);
+  // Rope-body contacts and attachments, and the rod's trial step with them (Rod::solveTrial; the
+  // rod's state is unchanged). lastStep().ok is false if the trial failed.
+  void beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h);
+  // Commits the (possibly corrected) trial, applies the opposite impulses to the bodies, records the
+  // contact forces and refreshes the swept capsule boxes.
+  void endSubstep(double h);
 
  private:
   friend class RopeWorld;
+  // Rope-rope contact statistics of the substep (RopeWorld fills them in between the two halves).
+  void recordRopeContacts(int active, double maxOverlap) {
+    lastStep_.ropeContacts = active;
+    lastStep_.maxSelfOverlap = maxOverlap;
+  }
   void enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld);
   void leaveWorld();
   int findAttachment(int id) const;
@@ -114,7 +126,6 @@ class RopeObject {
   };
   std::vector<ContactInput> inputs_;
   std::vector<Vec3> forceTotals_;  // per contact record: end-of-step force of the last solve, N
-  std::unique_ptr<Rod> backup_;       // the rod before the step, for redoing it without pulling contacts
 };
 
 }  // namespace rope::bullet

@@ -23,6 +23,11 @@ void BulletRopeSettings::validate() const {
   if (bodyStabilityFactor > 1.0) {
     throw InvalidArgument("settings.bodyStabilityFactor", formatValue(bodyStabilityFactor), "must be <= 1");
   }
+  requireFinite("settings.selfContactExclusion", selfContactExclusion);
+  if (selfContactExclusion < 0.0 && selfContactExclusion != kDerivedExclusion) {
+    throw InvalidArgument("settings.selfContactExclusion", formatValue(selfContactExclusion),
+                          "must be >= 0 (m) or kDerivedExclusion");
+  }
   if (collisionGroup == 0) {
     throw InvalidArgument("settings.collisionGroup", "0", "must have at least one bit set");
   }

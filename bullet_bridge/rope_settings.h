@@ -50,10 +50,28 @@ struct BulletRopeSettings {
   double initialPredictionTime = 1.0 / 60.0;
   // Share of the stable explicit limit used on dynamic bodies, in (0, 1] (see contactStiffness).
   double bodyStabilityFactor = 0.25;
-  // Broadphase filter of the rope's capsules. The default group is a bit no stock Bullet filter uses,
-  // and the mask excludes it, so capsules of ropes never pair with each other.
+  // Broadphase filter of the rope's capsules. The default group is a bit no stock Bullet filter uses;
+  // the mask accepts everything, rope capsules included, so that ropes meet each other (and
+  // themselves) through the same broadphase. Two ropes touch only if each one's mask accepts the
+  // other's group; clearing the group bit from a rope's mask turns its rope-rope contact off.
   int collisionGroup = 1 << 10;
-  int collisionMask = ~(1 << 10);
+  int collisionMask = -1;
+
+  // ---- rope-rope and self-contact (rope_rope_contact.h) ----
+  // Whether the rope collides with itself. Rope-rope contact between two ropes is governed by the
+  // broadphase filter above. The contact law is contactStiffness, contactDamping, speculativeDamping,
+  // friction and frictionVelocity (for two ropes, the smaller value of each of the two ropes').
+  bool selfContact = true;
+  // Two points of the same rope closer than this along the rest curve never count as touching, m of
+  // rest length, >= 0; kDerivedExclusion: 4 rope radii. Points within pi r of each other along a
+  // bent rope can be closer than one diameter without any overlap (a U-turn of bending radius r),
+  // so the exclusion must exceed pi r; it depends on the material, not on where the knots are.
+  static constexpr double kDerivedExclusion = -1.0;
+  double selfContactExclusion = kDerivedExclusion;
+  // The exclusion length for a rope of this radius (m).
+  double effectiveSelfContactExclusion(double radius) const {
+    return selfContactExclusion >= 0.0 ? selfContactExclusion : 4.0 * radius;
+  }
 
   // Throws rope::InvalidArgument naming the field ("settings.contactStiffness", ...) and its value for
   // anything outside the ranges above, NaN and infinity included.

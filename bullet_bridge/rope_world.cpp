@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <tuple>
 
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/rope_debug_draw.h"
@@ -31,6 +32,12 @@ class RopeWorld::Action : public btActionInterface {
 double ContactReport::maxPenetration() const {
   double deepest = 0.0;
   for (const RopeStepRecord& rope : ropes) deepest = std::max(deepest, rope.maxPenetration);
+  return deepest;
+}
+
+double ContactReport::maxSelfOverlap() const {
+  double deepest = 0.0;
+  for (const RopePairContactRecord& contact : ropeContacts) deepest = std::max(deepest, contact.depth);
   return deepest;
 }
 
@@ -77,6 +84,7 @@ void RopeWorld::substep(double h) {
   const auto scanStart = std::chrono::steady_clock::now();
   candidates_.resize(ropes_.size());
   for (auto& list : candidates_) list.clear();
+  capsulePairs_.clear();
   btBroadphasePairArray& pairs = world_.getPairCache()->getOverlappingPairArray();
   for (int i = 0; i < pairs.size(); ++i) {
     const btBroadphaseProxy* proxy0 = pairs[i].m_pProxy0;
@@ -86,7 +94,22 @@ void RopeWorld::substep(double h) {
     const auto* object1 = static_cast<const btCollisionObject*>(proxy1->m_clientObject);
     RopeObject* rope0 = CapsuleProxies::ropeOf(*object0);
     RopeObject* rope1 = CapsuleProxies::ropeOf(*object1);
-    if ((rope0 == nullptr) == (rope1 == nullptr)) continue;  // no rope, or two rope capsules
+    if (rope0 == nullptr && rope1 == nullptr) continue;  // no rope
+    if (rope0 != nullptr && rope1 != nullptr) {
+      // Two rope capsules: a rope-rope or self-contact candidate (rope_rope_contact.h).
+      if (!TestAabbAgainstAabb2(proxy0->m_aabbMin, proxy0->m_aabbMax, proxy1->m_aabbMin, proxy1->m_aabbMax)) continue;
+      const auto slot0 = std::find(ropes_.begin(), ropes_.end(), rope0);
+      const auto slot1 = std::find(ropes_.begin(), ropes_.end(), rope1);
+      if (slot0 == ropes_.end() || slot1 == ropes_.end()) continue;
+      RopeCapsulePair pair{static_cast<int>(slot0 - ropes_.begin()), CapsuleProxies::capsuleIndexOf(*object0),
+                           static_cast<int>(slot1 - ropes_.begin()), CapsuleProxies::capsuleIndexOf(*object1)};
+      if (pair.ropeA > pair.ropeB || (pair.ropeA == pair.ropeB && pair.capsuleA > pair.capsuleB)) {
+        std::swap(pair.ropeA, pair.ropeB);
+        std::swap(pair.capsuleA, pair.capsuleB);
+      }
+      capsulePairs_.push_back(pair);
+      continue;
+    }
     RopeObject* rope = rope0 != nullptr ? rope0 : rope1;
     const btCollisionObject* body = rope0 != nullptr ? object1 : object0;
     // Triggers and other objects that want no contact response get none from ropes either.
@@ -102,6 +125,8 @@ void RopeWorld::substep(double h) {
   report_.timeStep = h;
   report_.contacts.clear();
   report_.ropes.clear();
+  report_.ropeContacts.clear();
+  report_.ropeContactFailure = "";
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     std::vector<const btCollisionObject*>& list = candidates_[r];
     // Deterministic order (pointer values are not): by the body's index in the world.
@@ -109,10 +134,39 @@ void RopeWorld::substep(double h) {
       return a->getWorldArrayIndex() < b->getWorldArrayIndex();
     });
     list.erase(std::unique(list.begin(), list.end()), list.end());
-    RopeObject& rope = *ropes_[r];
-    rope.substep(list, h);
-    report_.contacts.insert(report_.contacts.end(), rope.contacts().begin(), rope.contacts().end());
-    report_.ropes.push_back(rope.lastStep());
+    ropes_[r]->beginSubstep(list, h);
+  }
+
+  // Rope-rope and self-contact, coupled into the trials of all ropes at once; pairs in a fixed order
+  // (the pair cache's order depends on pointer hashes).
+  const auto ropeStart = std::chrono::steady_clock::now();
+  std::sort(capsulePairs_.begin(), capsulePairs_.end(), [](const RopeCapsulePair& a, const RopeCapsulePair& b) {
+    return std::tie(a.ropeA, a.capsuleA, a.ropeB, a.capsuleB) < std::tie(b.ropeA, b.capsuleA, b.ropeB, b.capsuleB);
+  });
+  capsulePairs_.erase(std::unique(capsulePairs_.begin(), capsulePairs_.end(),
+                                  [](const RopeCapsulePair& a, const RopeCapsulePair& b) {
+                                    return a.ropeA == b.ropeA && a.capsuleA == b.capsuleA && a.ropeB == b.ropeB &&
+                                           a.capsuleB == b.capsuleB;
+                                  }),
+                      capsulePairs_.end());
+  const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
+  if (ropeContacts < 0) report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    int active = 0;
+    double overlap = 0.0;
+    for (const RopePairContactRecord& record : report_.ropeContacts) {
+      if (record.ropeA != ropes_[r] && record.ropeB != ropes_[r]) continue;
+      overlap = std::max(overlap, record.depth);
+      if (record.active) ++active;
+    }
+    ropes_[r]->recordRopeContacts(active, overlap);
+  }
+  report_.ropeContactSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
+
+  for (RopeObject* rope : ropes_) {
+    rope->endSubstep(h);
+    report_.contacts.insert(report_.contacts.end(), rope->contacts().begin(), rope->contacts().end());
+    report_.ropes.push_back(rope->lastStep());
   }
   if (callback_) callback_(report_);
 }

@@ -20,6 +20,7 @@
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/contact_report.h"
 #include "bullet_bridge/rope_object.h"
+#include "bullet_bridge/rope_rope_contact.h"
 
 namespace rope::bullet {
 
@@ -60,6 +61,8 @@ class RopeWorld {
   std::unique_ptr<Action> action_;
   std::vector<RopeObject*> ropes_;
   std::vector<std::vector<const btCollisionObject*>> candidates_;  // per rope, scratch
+  std::vector<RopeCapsulePair> capsulePairs_;                       // scratch
+  RopeRopeContacts ropeRopeContacts_;
   ContactReport report_;
   std::function<void(const ContactReport&)> callback_;
   bool debugDraw_ = true;

@@ -1,0 +1,235 @@
+#include "bullet_bridge/rope_rope_contact.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "bullet_bridge/contact_response.h"
+#include "bullet_bridge/rope_object.h"
+#include "bullet_bridge/segment_segment_distance.h"
+
+namespace rope::bullet {
+
+namespace {
+
+constexpr int kMaxSolvePasses = 4;           // as for rope-body contact (rope_object.cpp)
+constexpr double kFrictionBoundTolerance = 0.05;
+
+btVector3 toBullet(const Vec3& v) {
+  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
+}
+
+// Cumulative rest length at the start of every knot span of the rod (span j = knot span degree + j),
+// so that the rest arclength between two parameters costs a binary search.
+void buildRestArc(const Rod& rod, std::vector<double>& starts) {
+  const RodIntegrals& integrals = rod.integrals();
+  starts.resize(static_cast<size_t>(integrals.spanCount()) + 1);
+  starts[0] = 0.0;
+  for (int j = 0; j < integrals.spanCount(); ++j) {
+    starts[static_cast<size_t>(j) + 1] = starts[static_cast<size_t>(j)] + integrals.span(j).restLength;
+  }
+}
+
+// Rest arclength from the rod's start to C(s), linear in s inside a span (exact for ropes made from a
+// segment, whose parameter is the rest arclength).
+double restArcAt(const Rod& rod, const std::vector<double>& starts, double s) {
+  const KnotVector& knots = rod.knots();
+  const int k = knots.findSpan(s);
+  const int j = k - knots.degree();
+  const double width = knots[k + 1] - knots[k];
+  const double fraction = width > 0.0 ? (s - knots[k]) / width : 0.0;
+  return starts[static_cast<size_t>(j)] + fraction * (starts[static_cast<size_t>(j) + 1] - starts[static_cast<size_t>(j)]);
+}
+
+double parameterAt(const CapsuleProxy& proxy, double t) {
+  if (t <= 0.0) return proxy.s0;
+  if (t >= 1.0) return proxy.s1;  // exactly the neighbour's s0: shared ends give identical contacts
+  return std::min(proxy.s1, std::max(proxy.s0, proxy.s0 + t * (proxy.s1 - proxy.s0)));
+}
+
+// The softer of two ropes' laws (each field the smaller value): a stiff rope against a soft one is
+// limited by the soft one, and friction by the more slippery surface.
+ContactLaw pairLaw(const BulletRopeSettings& a, const BulletRopeSettings& b) {
+  ContactLaw law;
+  law.stiffness = std::min(a.contactStiffness, b.contactStiffness);
+  law.damping = std::min(a.contactDamping, b.contactDamping);
+  law.speculativeDamping = std::min(a.speculativeDamping, b.speculativeDamping);
+  law.friction = std::min(a.friction, b.friction);
+  law.frictionVelocity = std::max(a.frictionVelocity, b.frictionVelocity);
+  return law;
+}
+
+}  // namespace
+
+
+int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs,
+                            double h, std::vector<RopePairContactRecord>& records) {
+  candidates_.clear();
+  restArc_.resize(ropes.size());
+  for (size_t r = 0; r < ropes.size(); ++r) buildRestArc(ropes[r]->rod(), restArc_[r]);
+
+  // ---- narrowphase, at the ropes' state before the step ----
+  for (const RopeCapsulePair& pair : pairs) {
+    const RopeObject& ropeA = *ropes[static_cast<size_t>(pair.ropeA)];
+    const RopeObject& ropeB = *ropes[static_cast<size_t>(pair.ropeB)];
+    const Rod& rodA = ropeA.rod();
+    const Rod& rodB = ropeB.rod();
+    const bool self = pair.ropeA == pair.ropeB;
+    if (self && !ropeA.settings().selfContact) continue;
+    if (pair.capsuleA >= ropeA.proxies().size() || pair.capsuleB >= ropeB.proxies().size()) continue;
+    const CapsuleProxy& proxyA = ropeA.proxies().proxy(pair.capsuleA);
+    const CapsuleProxy& proxyB = ropeB.proxies().proxy(pair.capsuleB);
+    const double exclusion = ropeA.settings().effectiveSelfContactExclusion(rodA.settings().radius);
+    if (self) {
+      // Skip pairs whose every point pair is excluded (neighbouring capsules, which always overlap).
+      const std::vector<double>& arc = restArc_[static_cast<size_t>(pair.ropeA)];
+      const double a0 = restArcAt(rodA, arc, proxyA.s0), a1 = restArcAt(rodA, arc, proxyA.s1);
+      const double b0 = restArcAt(rodA, arc, proxyB.s0), b1 = restArcAt(rodA, arc, proxyB.s1);
+      if (std::max(std::abs(b1 - a0), std::abs(a1 - b0)) < exclusion) continue;
+    }
+    const Capsule capsuleA = ropeA.proxies().capsule(pair.capsuleA);
+    const Capsule capsuleB = ropeB.proxies().capsule(pair.capsuleB);
+    const double radii = rodA.settings().radius + rodB.settings().radius;
+    const double margin = std::max(ropeA.settings().speculativeMargin, ropeB.settings().speculativeMargin);
+    const double reach = margin + h * (std::max(rodA.velocity(proxyA.s0).norm(), rodA.velocity(proxyA.s1).norm()) +
+                                       std::max(rodB.velocity(proxyB.s0).norm(), rodB.velocity(proxyB.s1).norm()));
+    const SegmentPairClosest closest = segmentSegmentClosest(capsuleA.a, capsuleA.b, capsuleB.a, capsuleB.b);
+    if (!(closest.distance - radii < reach)) continue;
+
+    const double sA = parameterAt(proxyA, closest.s);
+    const double sB = parameterAt(proxyB, closest.t);
+    if (self) {
+      const std::vector<double>& arc = restArc_[static_cast<size_t>(pair.ropeA)];
+      if (std::abs(restArcAt(rodA, arc, sA) - restArcAt(rodA, arc, sB)) < exclusion) continue;
+    }
+    bool duplicate = false;
+    for (const Candidate& other : candidates_) {
+      duplicate = duplicate || (other.ropeA == pair.ropeA && other.ropeB == pair.ropeB && other.sA == sA && other.sB == sB);
+    }
+    if (duplicate) continue;
+
+    const Vec3 pointA = rodA.position(sA);
+    const Vec3 pointB = rodB.position(sB);
+    Vec3 normal = pointA - pointB;
+    double centres = normal.norm();
+    if (centres > 1e-12 * radii) {
+      normal /= centres;
+    } else {
+      // Centre lines meet: separate across both tangents (or any direction normal to A's).
+      normal = rodA.tangent(sA).cross(rodB.tangent(sB));
+      if (!(normal.norm() > 1e-9)) normal = rodA.tangent(sA).unitOrthogonal();
+      normal.normalize();
+      centres = 0.0;
+    }
+    const double distance = centres - radii;
+    const Vec3 uA = rodA.velocity(sA);
+    const Vec3 uB = rodB.velocity(sB);
+
+    RopePairContactRecord record;
+    record.ropeA = &ropeA;
+    record.ropeB = &ropeB;
+    record.sA = sA;
+    record.sB = sB;
+    record.pointA = toBullet(pointA);
+    record.pointB = toBullet(pointB);
+    record.normal = toBullet(normal);
+    record.depth = -distance;
+    Candidate candidate;
+    candidate.record = static_cast<int>(records.size());
+    candidate.ropeA = pair.ropeA;
+    candidate.ropeB = pair.ropeB;
+    candidate.sA = sA;
+    candidate.sB = sB;
+    candidate.law = pairLaw(ropeA.settings(), ropeB.settings());
+    candidate.distance = distance;
+    candidate.normal = normal;
+    candidate.relativeVelocity = uA - uB;
+    candidate.frictionNormalForce = -1.0;
+    candidate.active = contactActive(distance, normal, uA, uB, h) && rodA.hasTrial() && rodB.hasTrial();
+    records.push_back(record);
+    candidates_.push_back(candidate);
+  }
+
+  // ---- implicit coupled response ----
+  // Rods with a trial, and their index in the coupled solve (-1: the rope's step failed).
+  std::vector<int> rodIndex(ropes.size(), -1);
+  rods_.clear();
+  for (size_t r = 0; r < ropes.size(); ++r) {
+    if (!ropes[r]->rod().hasTrial()) continue;
+    rodIndex[r] = static_cast<int>(rods_.size());
+    rods_.push_back(&ropes[r]->rod());
+  }
+  couplings_.clear();
+  std::vector<int> coupled;  // candidate index of each coupling
+  for (size_t c = 0; c < candidates_.size(); ++c) {
+    const Candidate& candidate = candidates_[c];
+    if (!candidate.active) continue;
+    couplings_.push_back({rodIndex[static_cast<size_t>(candidate.ropeA)], candidate.sA,
+                          rodIndex[static_cast<size_t>(candidate.ropeB)], candidate.sB});
+    coupled.push_back(static_cast<int>(c));
+  }
+  if (couplings_.empty()) return 0;
+
+  solver_.prepare(rods_, couplings_);
+  const auto lawOf = [h](const Candidate& candidate) {
+    CouplingLaw law;
+    if (!candidate.active) return law;
+    // The contact law in the relative velocity (the "body" at rest in B's frame): f0, K, D.
+    const ContactSpring spring = contactSpring(candidate.law, candidate.distance, candidate.normal,
+                                               candidate.relativeVelocity, Vec3::Zero(), h,
+                                               candidate.frictionNormalForce);
+    law.impulse = h * (spring.force - h * (spring.stiffness * candidate.relativeVelocity));
+    law.admittance = h * h * spring.stiffness + h * spring.damping;
+    return law;
+  };
+  laws_.resize(couplings_.size());
+  for (size_t k = 0; k < couplings_.size(); ++k) laws_[k] = lawOf(candidates_[static_cast<size_t>(coupled[k])]);
+
+  bool solved = false;
+  for (int pass = 1; pass <= kMaxSolvePasses; ++pass) {
+    solved = solver_.solveImpulses(laws_, impulses_);
+    if (!solved || pass == kMaxSolvePasses) break;
+    bool changed = false;
+    for (size_t k = 0; k < couplings_.size(); ++k) {
+      Candidate& candidate = candidates_[static_cast<size_t>(coupled[k])];
+      if (!candidate.active) continue;
+      const double normalForce = candidate.normal.dot(impulses_[k]) / h;
+      if (normalForce < 0.0) {
+        candidate.active = false;  // pulling: the tubes separate during the step
+      } else if (candidate.law.friction > 0.0) {
+        const double estimate = candidate.frictionNormalForce >= 0.0
+                                    ? candidate.frictionNormalForce
+                                    : std::max(0.0, -candidate.law.stiffness * candidate.distance);
+        if (std::abs(normalForce - estimate) <= kFrictionBoundTolerance * std::max(normalForce, estimate)) continue;
+        candidate.frictionNormalForce = normalForce;
+      } else {
+        continue;
+      }
+      laws_[k] = lawOf(candidate);
+      changed = true;
+    }
+    if (!changed) break;
+  }
+  if (!solved) {
+    // The ropes keep their uncoupled trials; the contacts are reported as not acting.
+    for (const int c : coupled) candidates_[static_cast<size_t>(c)].active = false;
+    return -1;
+  }
+  solver_.apply(impulses_);
+
+  int active = 0;
+  for (size_t k = 0; k < couplings_.size(); ++k) {
+    const Candidate& candidate = candidates_[static_cast<size_t>(coupled[k])];
+    if (!candidate.active) continue;
+    RopePairContactRecord& record = records[static_cast<size_t>(candidate.record)];
+    record.active = true;
+    record.force = toBullet(impulses_[k] / h);
+    const Vec3 slip = candidate.relativeVelocity + solver_.relativeChange(static_cast<int>(k), impulses_);
+    record.sticking = (slip - candidate.normal * candidate.normal.dot(slip)).norm() < candidate.law.frictionVelocity;
+    ++active;
+  }
+  return active;
+}
+
+}  // namespace rope::bullet

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include <Eigen/Geometry>
 
@@ -13,7 +14,7 @@ namespace rope::bullet {
 
 namespace {
 
-constexpr int kMaxSolvePasses = 4;           // as for rope-body contact (rope_object.cpp)
+constexpr int kMaxSolvePasses = 6;  // small dense solves: contacts switch on and off, friction bounds settle
 constexpr double kFrictionBoundTolerance = 0.05;
 
 btVector3 toBullet(const Vec3& v) {
@@ -81,17 +82,21 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     const CapsuleProxy& proxyA = ropeA.proxies().proxy(pair.capsuleA);
     const CapsuleProxy& proxyB = ropeB.proxies().proxy(pair.capsuleB);
     const double exclusion = ropeA.settings().effectiveSelfContactExclusion(rodA.settings().radius);
+    const std::vector<double>& arcA = restArc_[static_cast<size_t>(pair.ropeA)];
     if (self) {
       // Skip pairs whose every point pair is excluded (neighbouring capsules, which always overlap).
-      const std::vector<double>& arc = restArc_[static_cast<size_t>(pair.ropeA)];
-      const double a0 = restArcAt(rodA, arc, proxyA.s0), a1 = restArcAt(rodA, arc, proxyA.s1);
-      const double b0 = restArcAt(rodA, arc, proxyB.s0), b1 = restArcAt(rodA, arc, proxyB.s1);
+      const double a0 = restArcAt(rodA, arcA, proxyA.s0), a1 = restArcAt(rodA, arcA, proxyA.s1);
+      const double b0 = restArcAt(rodA, arcA, proxyB.s0), b1 = restArcAt(rodA, arcA, proxyB.s1);
       if (std::max(std::abs(b1 - a0), std::abs(a1 - b0)) < exclusion) continue;
     }
     const Capsule capsuleA = ropeA.proxies().capsule(pair.capsuleA);
     const Capsule capsuleB = ropeB.proxies().capsule(pair.capsuleB);
     const double radii = rodA.settings().radius + rodB.settings().radius;
-    const double margin = std::max(ropeA.settings().speculativeMargin, ropeB.settings().speculativeMargin);
+    // Candidates: gaps that the step can close (both ropes' speeds) plus a fraction of the radii; the
+    // body margin (speculativeMargin, sized for fast ropes against thin bodies) would flood a knot
+    // with distant pairs.
+    const double margin = std::min(std::max(ropeA.settings().speculativeMargin, ropeB.settings().speculativeMargin),
+                                   0.5 * radii);
     const double reach = margin + h * (std::max(rodA.velocity(proxyA.s0).norm(), rodA.velocity(proxyA.s1).norm()) +
                                        std::max(rodB.velocity(proxyB.s0).norm(), rodB.velocity(proxyB.s1).norm()));
     const SegmentPairClosest closest = segmentSegmentClosest(capsuleA.a, capsuleA.b, capsuleB.a, capsuleB.b);
@@ -99,15 +104,9 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
 
     const double sA = parameterAt(proxyA, closest.s);
     const double sB = parameterAt(proxyB, closest.t);
-    if (self) {
-      const std::vector<double>& arc = restArc_[static_cast<size_t>(pair.ropeA)];
-      if (std::abs(restArcAt(rodA, arc, sA) - restArcAt(rodA, arc, sB)) < exclusion) continue;
-    }
-    bool duplicate = false;
-    for (const Candidate& other : candidates_) {
-      duplicate = duplicate || (other.ropeA == pair.ropeA && other.ropeB == pair.ropeB && other.sA == sA && other.sB == sB);
-    }
-    if (duplicate) continue;
+    const double arcSA = restArcAt(rodA, arcA, sA);
+    const double arcSB = restArcAt(rodB, restArc_[static_cast<size_t>(pair.ropeB)], sB);
+    if (self && std::abs(arcSA - arcSB) < exclusion) continue;
 
     const Vec3 pointA = rodA.position(sA);
     const Vec3 pointB = rodB.position(sB);
@@ -122,33 +121,59 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
       normal.normalize();
       centres = 0.0;
     }
-    const double distance = centres - radii;
-    const Vec3 uA = rodA.velocity(sA);
-    const Vec3 uB = rodB.velocity(sB);
-
-    RopePairContactRecord record;
-    record.ropeA = &ropeA;
-    record.ropeB = &ropeB;
-    record.sA = sA;
-    record.sB = sB;
-    record.pointA = toBullet(pointA);
-    record.pointB = toBullet(pointB);
-    record.normal = toBullet(normal);
-    record.depth = -distance;
     Candidate candidate;
-    candidate.record = static_cast<int>(records.size());
+    candidate.record = -1;
     candidate.ropeA = pair.ropeA;
     candidate.ropeB = pair.ropeB;
     candidate.sA = sA;
     candidate.sB = sB;
+    candidate.arcA = arcSA;
+    candidate.arcB = arcSB;
+    candidate.spacing = radii;
     candidate.law = pairLaw(ropeA.settings(), ropeB.settings());
-    candidate.distance = distance;
+    candidate.distance = centres - radii;
     candidate.normal = normal;
-    candidate.relativeVelocity = uA - uB;
+    candidate.relativeVelocity = rodA.velocity(sA) - rodB.velocity(sB);
     candidate.frictionNormalForce = -1.0;
-    candidate.active = contactActive(distance, normal, uA, uB, h) && rodA.hasTrial() && rodB.hasTrial();
-    records.push_back(record);
+    candidate.coupled = rodA.hasTrial() && rodB.hasTrial();
+    candidate.active = false;
     candidates_.push_back(candidate);
+  }
+
+  // One contact per place: neighbouring capsule pairs find the same crossing (or the same stretch of a
+  // side-by-side contact) several times. Deepest first; a candidate within one contact spacing (the sum
+  // of the radii, along both rest curves) of an accepted one is dropped, so a line contact is sampled
+  // about once per diameter.
+  std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
+    return std::tie(a.distance, a.ropeA, a.sA, a.ropeB, a.sB) < std::tie(b.distance, b.ropeA, b.sA, b.ropeB, b.sB);
+  });
+  size_t kept = 0;
+  for (size_t c = 0; c < candidates_.size(); ++c) {
+    const Candidate& candidate = candidates_[c];
+    bool near = false;
+    for (size_t a = 0; a < kept && !near; ++a) {
+      const Candidate& other = candidates_[a];
+      near = other.ropeA == candidate.ropeA && other.ropeB == candidate.ropeB &&
+             std::abs(other.arcA - candidate.arcA) < candidate.spacing &&
+             std::abs(other.arcB - candidate.arcB) < candidate.spacing;
+    }
+    if (!near) candidates_[kept++] = candidate;
+  }
+  candidates_.resize(kept);
+  for (Candidate& candidate : candidates_) {
+    const RopeObject& ropeA = *ropes[static_cast<size_t>(candidate.ropeA)];
+    const RopeObject& ropeB = *ropes[static_cast<size_t>(candidate.ropeB)];
+    RopePairContactRecord record;
+    record.ropeA = &ropeA;
+    record.ropeB = &ropeB;
+    record.sA = candidate.sA;
+    record.sB = candidate.sB;
+    record.pointA = toBullet(ropeA.rod().position(candidate.sA));
+    record.pointB = toBullet(ropeB.rod().position(candidate.sB));
+    record.normal = toBullet(candidate.normal);
+    record.depth = -candidate.distance;
+    candidate.record = static_cast<int>(records.size());
+    records.push_back(record);
   }
 
   // ---- implicit coupled response ----
@@ -160,14 +185,18 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     rodIndex[r] = static_cast<int>(rods_.size());
     rods_.push_back(&ropes[r]->rod());
   }
+  // Every candidate whose gap the step can close enters the coupled system, acting or not, so that the
+  // active set below can switch it on when the solve predicts the tubes would overlap at the end of
+  // the step (gravity and the rope's own forces close gaps the start-of-step velocity does not).
   couplings_.clear();
-  std::vector<int> coupled;  // candidate index of each coupling
+  coupled_.clear();
   for (size_t c = 0; c < candidates_.size(); ++c) {
-    const Candidate& candidate = candidates_[c];
-    if (!candidate.active) continue;
+    Candidate& candidate = candidates_[c];
+    if (!candidate.coupled) continue;
+    candidate.active = contactActive(candidate.distance, candidate.normal, candidate.relativeVelocity, Vec3::Zero(), h);
     couplings_.push_back({rodIndex[static_cast<size_t>(candidate.ropeA)], candidate.sA,
                           rodIndex[static_cast<size_t>(candidate.ropeB)], candidate.sB});
-    coupled.push_back(static_cast<int>(c));
+    coupled_.push_back(static_cast<int>(c));
   }
   if (couplings_.empty()) return 0;
 
@@ -184,7 +213,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     return law;
   };
   laws_.resize(couplings_.size());
-  for (size_t k = 0; k < couplings_.size(); ++k) laws_[k] = lawOf(candidates_[static_cast<size_t>(coupled[k])]);
+  for (size_t k = 0; k < couplings_.size(); ++k) laws_[k] = lawOf(candidates_[static_cast<size_t>(coupled_[k])]);
 
   bool solved = false;
   for (int pass = 1; pass <= kMaxSolvePasses; ++pass) {
@@ -192,19 +221,25 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     if (!solved || pass == kMaxSolvePasses) break;
     bool changed = false;
     for (size_t k = 0; k < couplings_.size(); ++k) {
-      Candidate& candidate = candidates_[static_cast<size_t>(coupled[k])];
-      if (!candidate.active) continue;
-      const double normalForce = candidate.normal.dot(impulses_[k]) / h;
-      if (normalForce < 0.0) {
-        candidate.active = false;  // pulling: the tubes separate during the step
-      } else if (candidate.law.friction > 0.0) {
-        const double estimate = candidate.frictionNormalForce >= 0.0
-                                    ? candidate.frictionNormalForce
-                                    : std::max(0.0, -candidate.law.stiffness * candidate.distance);
-        if (std::abs(normalForce - estimate) <= kFrictionBoundTolerance * std::max(normalForce, estimate)) continue;
-        candidate.frictionNormalForce = normalForce;
+      Candidate& candidate = candidates_[static_cast<size_t>(coupled_[k])];
+      if (!candidate.active) {
+        // Switched on when the tubes would end the step overlapping.
+        const Vec3 w = candidate.relativeVelocity + solver_.relativeChange(static_cast<int>(k), impulses_);
+        if (!(candidate.distance + h * candidate.normal.dot(w) < 0.0)) continue;
+        candidate.active = true;
       } else {
-        continue;
+        const double normalForce = candidate.normal.dot(impulses_[k]) / h;
+        if (normalForce < 0.0) {
+          candidate.active = false;  // pulling: the tubes separate during the step
+        } else if (candidate.law.friction > 0.0) {
+          const double estimate = candidate.frictionNormalForce >= 0.0
+                                      ? candidate.frictionNormalForce
+                                      : std::max(0.0, -candidate.law.stiffness * candidate.distance);
+          if (std::abs(normalForce - estimate) <= kFrictionBoundTolerance * std::max(normalForce, estimate)) continue;
+          candidate.frictionNormalForce = normalForce;
+        } else {
+          continue;
+        }
       }
       laws_[k] = lawOf(candidate);
       changed = true;
@@ -213,14 +248,14 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   }
   if (!solved) {
     // The ropes keep their uncoupled trials; the contacts are reported as not acting.
-    for (const int c : coupled) candidates_[static_cast<size_t>(c)].active = false;
+    for (const int c : coupled_) candidates_[static_cast<size_t>(c)].active = false;
     return -1;
   }
   solver_.apply(impulses_);
 
   int active = 0;
   for (size_t k = 0; k < couplings_.size(); ++k) {
-    const Candidate& candidate = candidates_[static_cast<size_t>(coupled[k])];
+    const Candidate& candidate = candidates_[static_cast<size_t>(coupled_[k])];
     if (!candidate.active) continue;
     RopePairContactRecord& record = records[static_cast<size_t>(candidate.record)];
     record.active = true;

@@ -10,8 +10,9 @@
 // and coupled implicitly into both ropes' steps at once by rope::CoupledSolve (the ropes' factors get
 // a low-rank correction; no band is broken, nothing is lagged). The impulses are equal and opposite, so
 // rope-rope contact conserves momentum to round-off. As for bodies, contact is unilateral and friction
-// bounded by the actual normal force: contacts that come out pulling are released and friction bounds
-// are re-estimated from the end-of-step normal force, at most 4 small solves per substep.
+// bounded by the actual normal force: contacts that come out pulling are released, contacts the solve
+// predicts to end the step overlapping are switched on, and friction bounds are re-estimated from the
+// end-of-step normal force, at most 6 small solves per substep (the ropes' factors are reused).
 //
 // Excluded: two points of one rope closer than BulletRopeSettings::selfContactExclusion along the rest
 // curve (neighbouring capsules always overlap; that is the rope, not a contact), and ropes with
@@ -52,6 +53,9 @@ class RopeRopeContacts {
     int record;          // index into the records
     int ropeA, ropeB;
     double sA, sB;
+    double arcA, arcB;   // rest arclength of sA, sB, m
+    double spacing;      // m of rest length: closer candidates are the same contact
+    bool coupled;        // both ropes have a trial (else the contact is only reported)
     ContactLaw law;
     double distance;     // m, < 0 overlapping
     Vec3 normal;         // from B into A
@@ -62,6 +66,7 @@ class RopeRopeContacts {
   std::vector<Candidate> candidates_;
   std::vector<PointCoupling> couplings_;
   std::vector<CouplingLaw> laws_;
+  std::vector<int> coupled_;  // candidate index of each coupling
   std::vector<Vec3> impulses_;
   std::vector<Rod*> rods_;
   std::vector<std::vector<double>> restArc_;  // per rope: cumulative rest length at each span start

@@ -2,12 +2,16 @@
 #include "demos/scenes/demo_scene.h"
 #include "demos/scenes/drape_scene.h"
 #include "demos/scenes/hang_scene.h"
+#include "demos/scenes/knot_scene.h"
 #include "demos/scenes/tractrix_scene.h"
 
 namespace rope::demos {
 
 const std::vector<SceneEntry>& sceneCatalogue() {
   static const std::vector<SceneEntry> catalogue = {
+      {"knot",
+       "knot tying in a Bullet world: a loose overhand knot pulled tight by two grippers (self-contact)",
+       10.0, [] { return std::unique_ptr<DemoScene>(new KnotScene(KnotSceneSettings{})); }},
       {"hang",
        "catenary: a 1.25 m rope whose pinned ends are drawn together to 1 m and left to settle",
        10.0, [] { return std::unique_ptr<DemoScene>(new HangScene(HangSceneSettings{})); }},

@@ -157,6 +157,13 @@ double Rod::restLength() const {
 
 double Rod::maxStrain() const { return rope::maxStrain(integrals_, points_); }
 
+double Rod::strain(double s) const {
+  validateParameter(s);
+  const double rest = evaluateCurve(knots_, rest_, s).firstDerivative.norm();
+  const double current = evaluateCurve(knots_, points_, s).firstDerivative.norm();
+  return rest > 0.0 ? current / rest - 1.0 : 0.0;
+}
+
 double Rod::mass() const {
   double sum = 0.0;
   for (int j = 0; j < integrals_.spanCount(); ++j) {

@@ -102,6 +102,7 @@ class Rod {
   double length() const;         // current arc length, m
   double restLength() const;     // m
   double maxStrain() const;      // largest |C'|/l0' - 1 over the quadrature points
+  double strain(double s) const; // |C'(s)|/l0'(s) - 1 (throws InvalidArgument("s", ...) like position)
   double mass() const;           // kg
   Vec3 momentum() const;         // kg m/s
   double kineticEnergy() const;  // J, (1/2) v^T M v

@@ -37,7 +37,7 @@ struct KnotSceneSettings {
   // itself by more than a fraction of a millimetre; rope-rope contact is implicit on both sides, so
   // the stiffness costs no stability.
   static bullet::BulletRopeSettings defaultBridge();
-  static KnotSceneSettings gravity();  // kGravity with the grippers closer, so the knot hangs lower
+  static KnotSceneSettings gravity();  // kGravity, with a heavy cord (0.3 kg/m) whose weight ties the knot
 };
 
 // The loose overhand knot as a polyline (m), starting at the -z tail's end: a trefoil of scale

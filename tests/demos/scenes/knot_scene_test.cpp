@@ -1,0 +1,155 @@
+#include "demos/scenes/knot_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rope/common/error.h"
+
+namespace rope::demos {
+namespace {
+
+// Rest length of the shortest non-empty knot span: the finest resolution the rope reached.
+double smallestSpanRestLength(const Rod& rod) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < rod.integrals().spanCount(); ++j) {
+    const double length = rod.integrals().span(j).restLength;
+    if (length > 0.0) smallest = std::min(smallest, length);
+  }
+  return smallest;
+}
+
+struct KnotRun {
+  double worstOverlap = 0.0;      // m, over every step
+  double looseLength = 0.0;       // m of rope in the knot when the tightening starts
+  KnotRegion tight;               // at the end of the tightening
+  KnotRegion held;                // after holding
+  int insertions = 0, removals = 0;
+  int maxControlPoints = 0;
+};
+
+// Runs the scene for `seconds`, recording the knot when it first forms (`looseAt`), at `tightAt` and
+// at the end; checks the overlap bound at every step.
+KnotRun runKnot(KnotScene& scene, double looseAt, double tightAt, double seconds) {
+  KnotRun run;
+  const double diameter = 2.0 * scene.rope().rod().settings().radius;
+  const int steps = static_cast<int>(std::lround(seconds / scene.timeStep()));
+  for (int i = 0; i < steps; ++i) {
+    const StepMeasurements m = scene.step();
+    run.worstOverlap = std::max(run.worstOverlap, m.maxSelfOverlap.value_or(0.0));
+    EXPECT_LE(m.maxSelfOverlap.value_or(0.0), 0.2 * diameter) << "t = " << scene.time();
+    run.insertions += m.insertions;
+    run.removals += m.removals;
+    run.maxControlPoints = std::max(run.maxControlPoints, m.controlPoints);
+    const KnotRegion knot = scene.knot();
+    if (run.looseLength == 0.0 && scene.time() >= looseAt && knot.found) run.looseLength = knot.length;
+    if (std::abs(scene.time() - tightAt) < 0.5 * scene.timeStep()) run.tight = knot;
+  }
+  run.held = scene.knot();
+  return run;
+}
+
+void expectTightKnot(const KnotScene& scene, const KnotRun& run, double maxExtentDiameters) {
+  const Rod& rod = scene.rope().rod();
+  const double diameter = 2.0 * rod.settings().radius;
+  ASSERT_TRUE(run.tight.found);
+  ASSERT_TRUE(run.held.found);
+  ::testing::Test::RecordProperty("worst_overlap_mm", std::to_string(run.worstOverlap * 1e3));
+  ::testing::Test::RecordProperty("knot_length_loose_m", std::to_string(run.looseLength));
+  ::testing::Test::RecordProperty("knot_length_tight_m", std::to_string(run.held.length));
+  ::testing::Test::RecordProperty("knot_extent_diameters", std::to_string(run.held.extent / diameter));
+  // Tightened: far less rope in the knot than when it formed, and a knot a few diameters across.
+  EXPECT_LT(run.held.length, 0.6 * run.looseLength);
+  EXPECT_LT(run.held.extent, maxExtentDiameters * diameter);
+  // Held: it neither slips open nor creeps while the ends stay where they are.
+  EXPECT_NEAR(run.held.length, run.tight.length, 0.05 * run.tight.length);
+  EXPECT_NEAR(run.held.extent, run.tight.extent, 0.05 * run.tight.extent);
+  // Adaptive: both insertions and removals happened ([A] §5.2 reports 9 and 4), and the rope has far
+  // fewer control points than a uniform one at its finest spacing.
+  EXPECT_GT(run.insertions, 0);
+  EXPECT_GT(run.removals, 0);
+  const double uniform = rod.restLength() / smallestSpanRestLength(rod) + rod.degree();
+  ::testing::Test::RecordProperty("control_points", std::to_string(rod.controlPointCount()));
+  ::testing::Test::RecordProperty("uniform_control_points", std::to_string(uniform));
+  EXPECT_LT(run.maxControlPoints, 0.5 * uniform);
+}
+
+TEST(KnotScene, PulledByTheGrippersTightensAndHolds) {
+  KnotScene scene(KnotSceneSettings{});
+  // Pull from 0.5 s; measured: tight (tension reached) by about 3.5 s.
+  const KnotRun run = runKnot(scene, 0.5, 4.0, 5.0);
+  expectTightKnot(scene, run, 3.5);
+  // Force control: the ends settle at the set tension (within the controller's 25%).
+  const double tension = scene.endStrain() * scene.rope().rod().settings().axialStiffness();
+  EXPECT_NEAR(tension, KnotSceneSettings{}.pullTension, 0.25 * KnotSceneSettings{}.pullTension);
+}
+
+TEST(KnotScene, BothEndsFixedItTightensUnderItsOwnWeight) {
+  KnotScene scene(KnotSceneSettings::gravity());
+  const KnotRun run = runKnot(scene, 0.2, 2.5, 4.0);
+  expectTightKnot(scene, run, 4.0);
+  EXPECT_DOUBLE_EQ(scene.endSeparation(), KnotScene(KnotSceneSettings::gravity()).endSeparation());  // ends fixed
+}
+
+TEST(KnotScene, TwinRunsAreBitwiseIdentical) {
+  KnotScene a(KnotSceneSettings{});
+  KnotScene b(KnotSceneSettings{});
+  for (int i = 0; i < 240; ++i) {
+    a.step();
+    b.step();
+    const Rod& ra = a.rope().rod();
+    const Rod& rb = b.rope().rod();
+    ASSERT_EQ(ra.knots().values(), rb.knots().values()) << "step " << i;
+    for (int k = 0; k < ra.controlPointCount(); ++k) {
+      ASSERT_EQ(ra.controlPoints()[static_cast<size_t>(k)], rb.controlPoints()[static_cast<size_t>(k)]) << "step " << i;
+      ASSERT_EQ(ra.velocities()[static_cast<size_t>(k)], rb.velocities()[static_cast<size_t>(k)]) << "step " << i;
+    }
+  }
+}
+
+TEST(KnotScene, PreformedKnotLeavesRoomBetweenItsStrands) {
+  const KnotSceneSettings settings;
+  const PointList points = overhandKnotPolyline(settings);
+  // Strands at least 1.2 diameters apart away from the neighbourhood along the polyline.
+  const double diameter = 2.0 * settings.rod.radius;
+  std::vector<double> arc(points.size(), 0.0);
+  for (size_t i = 1; i < points.size(); ++i) arc[i] = arc[i - 1] + (points[i] - points[i - 1]).norm();
+  double closest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < points.size(); ++i)
+    for (size_t j = i + 1; j < points.size(); ++j)
+      if (arc[j] - arc[i] > 5.0 * diameter) closest = std::min(closest, (points[i] - points[j]).norm());
+  EXPECT_GT(closest, 1.2 * diameter);
+  // Both tails end where the grippers are: on the z axis through the knot's top, at the set height.
+  EXPECT_NEAR(points.front().y(), settings.height, 1e-12);
+  EXPECT_NEAR(points.back().y(), settings.height, 1e-12);
+  EXPECT_LT(points.front().z(), -settings.tailLength + 0.1);
+  EXPECT_GT(points.back().z(), settings.tailLength - 0.1);
+}
+
+TEST(KnotScene, RejectsBadSettingsNamingTheField) {
+  const auto expectField = [](KnotSceneSettings settings, const char* field) {
+    try {
+      KnotScene scene(settings);
+      ADD_FAILURE() << "accepted bad " << field;
+    } catch (const InvalidArgument& e) {
+      EXPECT_EQ(e.parameter(), field);
+    }
+  };
+  KnotSceneSettings settings;
+  settings.loopScale = 0.0;
+  expectField(settings, "settings.loopScale");
+  settings = KnotSceneSettings{};
+  settings.endGap = 1.5;
+  expectField(settings, "settings.endGap");
+  settings = KnotSceneSettings{};
+  settings.pullTension = std::numeric_limits<double>::quiet_NaN();
+  expectField(settings, "settings.pullTension");
+  settings = KnotSceneSettings{};
+  settings.rod.radius = -1.0;
+  expectField(settings, "settings.radius");
+}
+
+}  // namespace
+}  // namespace rope::demos

@@ -37,11 +37,23 @@ int CoupledSolve::pointIndex(int rod, double s) {
   point.first = k - knots.degree();
   point.count = knots.degree() + 1;
   for (int a = 0; a < point.count; ++a) point.basis[a] = basis.d[0][static_cast<size_t>(a)];
-  const int n3 = 3 * owner.controlPointCount();
-  point.response.resize(static_cast<size_t>(3 * n3));
-  for (int axis = 0; axis < 3; ++axis) owner.trialImpulseResponse(s, axis, &point.response[static_cast<size_t>(axis * n3)]);
   points_.push_back(std::move(point));
   return static_cast<int>(points_.size()) - 1;
+}
+
+void CoupledSolve::ensureResponse(int p) {
+  Point& point = points_[static_cast<size_t>(p)];
+  if (!point.response.empty()) return;
+  const Rod& owner = *rods_[static_cast<size_t>(point.rod)];
+  const int n3 = 3 * owner.controlPointCount();
+  point.response.resize(static_cast<size_t>(3 * n3));
+  for (int axis = 0; axis < 3; ++axis) owner.trialImpulseResponse(point.s, axis, &point.response[static_cast<size_t>(axis * n3)]);
+}
+
+Eigen::Matrix3d CoupledSolve::zBlock(size_t k, size_t l) const {
+  // Z = J P J^T, block (k, l) = Y(a_k, a_l) - Y(a_k, b_l) - Y(b_k, a_l) + Y(b_k, b_l).
+  return crossResponse(pointA_[k], pointA_[l]) - crossResponse(pointA_[k], pointB_[l]) -
+         crossResponse(pointB_[k], pointA_[l]) + crossResponse(pointB_[k], pointB_[l]);
 }
 
 Eigen::Matrix3d CoupledSolve::crossResponse(int p, int q) const {
@@ -96,17 +108,7 @@ void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<Poin
     trialChange_[k] = (a.trialVelocity(c.sA) - a.velocity(c.sA)) - (b.trialVelocity(c.sB) - b.velocity(c.sB));
   }
 
-  // Z = J P J^T, block (k, l) = Y(a_k, a_l) - Y(a_k, b_l) - Y(b_k, a_l) + Y(b_k, b_l). Symmetric.
-  const int size = 3 * static_cast<int>(m);
-  z_.resize(size, size);
-  for (size_t k = 0; k < m; ++k) {
-    for (size_t l = 0; l <= k; ++l) {
-      const Eigen::Matrix3d block = crossResponse(pointA_[k], pointA_[l]) - crossResponse(pointA_[k], pointB_[l]) -
-                                    crossResponse(pointB_[k], pointA_[l]) + crossResponse(pointB_[k], pointB_[l]);
-      z_.block<3, 3>(static_cast<int>(3 * k), static_cast<int>(3 * l)) = block;
-      z_.block<3, 3>(static_cast<int>(3 * l), static_cast<int>(3 * k)) = block.transpose();
-    }
-  }
+  acting_.clear();
 }
 
 bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vector<Vec3>& impulses) {
@@ -115,16 +117,26 @@ bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vect
     throw InvalidArgument("laws.size()", std::to_string(laws.size()), "must equal the coupling count " + std::to_string(m));
   }
   impulses.assign(m, Vec3::Zero());
-  if (m == 0) return true;
-  const int size = 3 * static_cast<int>(m);
-  system_.setIdentity(size, size);
-  rhs_.resize(size);
+  acting_.clear();
   for (size_t k = 0; k < m; ++k) {
+    if (!laws[k].admittance.allFinite() || !laws[k].impulse.allFinite()) return false;
+    if (laws[k].admittance.isZero(0.0) && laws[k].impulse.isZero(0.0)) continue;  // p_k = 0 exactly
+    acting_.push_back(static_cast<int>(k));
+    ensureResponse(pointA_[k]);
+    ensureResponse(pointB_[k]);
+  }
+  const int a = static_cast<int>(acting_.size());
+  if (a == 0) return true;
+  // (I + W Z) p = e - W J dv_trial over the acting couplings only.
+  system_.setIdentity(3 * a, 3 * a);
+  rhs_.resize(3 * a);
+  for (int i = 0; i < a; ++i) {
+    const size_t k = static_cast<size_t>(acting_[static_cast<size_t>(i)]);
     const Eigen::Matrix3d& w = laws[k].admittance;
-    if (!w.allFinite() || !laws[k].impulse.allFinite()) return false;
-    const int row = static_cast<int>(3 * k);
-    system_.middleRows(row, 3) += w * z_.middleRows(row, 3);
-    rhs_.segment<3>(row) = laws[k].impulse - w * trialChange_[k];
+    for (int j = 0; j < a; ++j) {
+      system_.block<3, 3>(3 * i, 3 * j) += w * zBlock(k, static_cast<size_t>(acting_[static_cast<size_t>(j)]));
+    }
+    rhs_.segment<3>(3 * i) = laws[k].impulse - w * trialChange_[k];
   }
   lu_.compute(system_);
   const Eigen::VectorXd p = lu_.solve(rhs_);
@@ -133,14 +145,15 @@ bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vect
   // the factorisation broke down, not that the system is ill-posed.
   const double residual = (system_ * p - rhs_).norm();
   if (!(residual <= 1e-8 * (rhs_.norm() + system_.norm() * p.norm()) + 1e-300)) return false;
-  for (size_t k = 0; k < m; ++k) impulses[k] = p.segment<3>(static_cast<int>(3 * k));
+  for (int i = 0; i < a; ++i) impulses[static_cast<size_t>(acting_[static_cast<size_t>(i)])] = p.segment<3>(3 * i);
   return true;
 }
 
 Vec3 CoupledSolve::relativeChange(int k, const std::vector<Vec3>& impulses) const {
   Vec3 change = trialChange_[static_cast<size_t>(k)];
   for (size_t l = 0; l < impulses.size(); ++l) {
-    change += z_.block<3, 3>(3 * k, static_cast<int>(3 * l)) * impulses[l];
+    if (impulses[l].isZero(0.0)) continue;
+    change += zBlock(static_cast<size_t>(k), l) * impulses[l];
   }
   return change;
 }
@@ -156,7 +169,9 @@ void CoupledSolve::apply(const std::vector<Vec3>& impulses) {
     correction_.assign(n3, 0.0);
     bool touched = false;
     for (size_t k = 0; k < couplings_.size(); ++k) {
+      if (impulses[k].isZero(0.0)) continue;
       for (int side = 0; side < 2; ++side) {
+        ensureResponse(side == 0 ? pointA_[k] : pointB_[k]);
         const Point& point = points_[static_cast<size_t>(side == 0 ? pointA_[k] : pointB_[k])];
         if (point.rod != static_cast<int>(r)) continue;
         touched = true;

@@ -14,9 +14,12 @@
 // by the Woodbury identity against the rods' existing factors: with P the pinned inverse of each A
 // (Rod::trialImpulseResponse) and Z = J P J^T (3m x 3m),
 //   (I + W Z) p = e - W J dv_trial,   dv = dv_trial + P J^T p.
-// Cost: 3 O(n) solves per coupling point, O(m^2) for Z, O(m^3) for the small dense solve (m couplings);
-// the rods' band and factor are untouched. Exactly momentum-conserving: the impulses are equal and
-// opposite by construction.
+// Only the couplings that act (a non-zero law) enter the dense solve, and only their points need
+// responses, computed when a coupling first acts: a candidate with a zero law has p = 0 exactly, yet
+// relativeChange() still predicts its motion (so an active set can switch it on). Cost: 3 O(n) solves
+// per acting coupling point, O(m a) for the predictions and O(a^3) for the dense solve (a acting
+// couplings out of m); the rods' band and factor are untouched. Exactly momentum-conserving: the
+// impulses are equal and opposite by construction.
 
 #include <vector>
 
@@ -42,7 +45,7 @@ struct CouplingLaw {
 
 class CoupledSolve {
  public:
-  // Computes every coupling point's pinned impulse response and Z. Every rod must hold a trial
+  // Sets up the couplings (basis values and trial motion of every point). Every rod must hold a trial
   // (Rod::solveTrial succeeded, nothing changed since). Throws InvalidArgument naming the coupling
   // ("couplings[k].rodA", "couplings[k].sB", ...) for an index outside rods or a parameter outside
   // its rod, and ("rods[i]") for a null rod or one without a trial; nothing is prepared then.
@@ -52,10 +55,10 @@ class CoupledSolve {
   // Relative velocity change of coupling k in the trial, w_trial - w (m/s).
   const Vec3& trialRelativeChange(int k) const { return trialChange_[static_cast<size_t>(k)]; }
 
-  // Solves for the impulses p (N s, on A) under the given laws (one per coupling, same order).
-  // Returns false if the laws or the result are not finite or the small system is singular; the
-  // impulses are then unspecified. Can be called repeatedly with other laws (active sets, friction
-  // bounds) at O(m^3) each: the responses are kept.
+  // Solves for the impulses p (N s, on A) under the given laws (one per coupling, same order); a
+  // coupling whose law is zero gets p = 0 and costs nothing in the solve. Returns false if the laws or
+  // the result are not finite or the small system is singular; the impulses are then unspecified. Can
+  // be called repeatedly with other laws (active sets, friction bounds): responses are kept.
   bool solveImpulses(const std::vector<CouplingLaw>& laws, std::vector<Vec3>& impulses);
   // The relative velocity change of coupling k at the end of the step with impulses p: w_new - w.
   Vec3 relativeChange(int k, const std::vector<Vec3>& impulses) const;
@@ -70,17 +73,19 @@ class CoupledSolve {
     int first;              // first control point with b_i(s) != 0
     double basis[kMaxDegree + 1];
     int count;
-    std::vector<double> response;  // 3 columns of 3n: response to a unit impulse along x, y, z
+    std::vector<double> response;  // 3 columns of 3n (unit impulse along x, y, z); empty until needed
   };
   int pointIndex(int rod, double s);
-  Eigen::Matrix3d crossResponse(int p, int q) const;  // B_p^T R_q (zero for different rods)
+  void ensureResponse(int p);
+  Eigen::Matrix3d crossResponse(int p, int q) const;  // B_p^T R_q (zero for different rods); R_q computed
+  Eigen::Matrix3d zBlock(size_t k, size_t l) const;   // block (k, l) of Z; l's points have responses
 
   std::vector<Rod*> rods_;
   std::vector<PointCoupling> couplings_;
   std::vector<Point> points_;
   std::vector<int> pointA_, pointB_;  // per coupling
   std::vector<Vec3> trialChange_;
-  Eigen::MatrixXd z_;
+  std::vector<int> acting_;  // couplings with a non-zero law in the last solveImpulses
   Eigen::MatrixXd system_;
   Eigen::VectorXd rhs_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;

@@ -197,7 +197,7 @@ class Rod {
   void insertKnotUnchecked(double s);
   // Applies a planned removal to knots, points, velocities, rest state and integrals together.
   void applyRemoval(const KnotRemoval& plan);
-  bool isInteractionKnot(double s) const;
+  bool isNearInteraction(double s) const;
 
   RodSettings settings_;
   KnotVector knots_;

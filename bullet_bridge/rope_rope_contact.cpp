@@ -67,8 +67,20 @@ ContactLaw pairLaw(const BulletRopeSettings& a, const BulletRopeSettings& b) {
 int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs,
                             double h, std::vector<RopePairContactRecord>& records) {
   candidates_.clear();
+  // Per capsule end, once per substep (pairs share capsules many times over): rest arclength and speed.
   restArc_.resize(ropes.size());
-  for (size_t r = 0; r < ropes.size(); ++r) buildRestArc(ropes[r]->rod(), restArc_[r]);
+  ends_.resize(ropes.size());
+  for (size_t r = 0; r < ropes.size(); ++r) {
+    const Rod& rod = ropes[r]->rod();
+    const CapsuleProxies& proxies = ropes[r]->proxies();
+    buildRestArc(rod, restArc_[r]);
+    std::vector<CapsuleEnd>& ends = ends_[r];
+    ends.resize(static_cast<size_t>(proxies.size()) + 1);
+    for (int i = 0; i <= proxies.size(); ++i) {
+      const double s = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
+      ends[static_cast<size_t>(i)] = {restArcAt(rod, restArc_[r], s), rod.velocity(s).norm()};
+    }
+  }
 
   // ---- narrowphase, at the ropes' state before the step ----
   for (const RopeCapsulePair& pair : pairs) {
@@ -83,11 +95,11 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     const CapsuleProxy& proxyB = ropeB.proxies().proxy(pair.capsuleB);
     const double exclusion = ropeA.settings().effectiveSelfContactExclusion(rodA.settings().radius);
     const std::vector<double>& arcA = restArc_[static_cast<size_t>(pair.ropeA)];
+    const CapsuleEnd* endsA = &ends_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)];
+    const CapsuleEnd* endsB = &ends_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)];
     if (self) {
       // Skip pairs whose every point pair is excluded (neighbouring capsules, which always overlap).
-      const double a0 = restArcAt(rodA, arcA, proxyA.s0), a1 = restArcAt(rodA, arcA, proxyA.s1);
-      const double b0 = restArcAt(rodA, arcA, proxyB.s0), b1 = restArcAt(rodA, arcA, proxyB.s1);
-      if (std::max(std::abs(b1 - a0), std::abs(a1 - b0)) < exclusion) continue;
+      if (std::max(std::abs(endsB[1].arc - endsA[0].arc), std::abs(endsA[1].arc - endsB[0].arc)) < exclusion) continue;
     }
     const Capsule capsuleA = ropeA.proxies().capsule(pair.capsuleA);
     const Capsule capsuleB = ropeB.proxies().capsule(pair.capsuleB);
@@ -97,8 +109,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     // with distant pairs.
     const double margin = std::min(std::max(ropeA.settings().speculativeMargin, ropeB.settings().speculativeMargin),
                                    0.5 * radii);
-    const double reach = margin + h * (std::max(rodA.velocity(proxyA.s0).norm(), rodA.velocity(proxyA.s1).norm()) +
-                                       std::max(rodB.velocity(proxyB.s0).norm(), rodB.velocity(proxyB.s1).norm()));
+    const double reach = margin + h * (std::max(endsA[0].speed, endsA[1].speed) + std::max(endsB[0].speed, endsB[1].speed));
     const SegmentPairClosest closest = segmentSegmentClosest(capsuleA.a, capsuleA.b, capsuleB.a, capsuleB.b);
     if (!(closest.distance - radii < reach)) continue;
 

@@ -70,6 +70,11 @@ class RopeRopeContacts {
   std::vector<Vec3> impulses_;
   std::vector<Rod*> rods_;
   std::vector<std::vector<double>> restArc_;  // per rope: cumulative rest length at each span start
+  struct CapsuleEnd {
+    double arc;    // rest arclength, m
+    double speed;  // m/s before the step
+  };
+  std::vector<std::vector<CapsuleEnd>> ends_;  // per rope: capsule ends (capsule i spans i, i + 1)
   CoupledSolve solver_;
 };
 

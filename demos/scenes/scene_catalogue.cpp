@@ -3,6 +3,7 @@
 #include "demos/scenes/drape_scene.h"
 #include "demos/scenes/hang_scene.h"
 #include "demos/scenes/knot_scene.h"
+#include "demos/scenes/pile_scene.h"
 #include "demos/scenes/tractrix_scene.h"
 
 namespace rope::demos {
@@ -15,6 +16,8 @@ const std::vector<SceneEntry>& sceneCatalogue() {
       {"hang",
        "catenary: a 1.25 m rope whose pinned ends are drawn together to 1 m and left to settle",
        10.0, [] { return std::unique_ptr<DemoScene>(new HangScene(HangSceneSettings{})); }},
+      {"pile", "Bullet world: a 2 m rope dropped as a loose coil from 0.5 m piles up on the ground (self-contact)",
+       6.0, [] { return std::unique_ptr<DemoScene>(new PileScene(PileSceneSettings{})); }},
       {"tractrix",
        "follow-the-leader: TRX with 20 segments beside TRX_SD_MRG on the same path",
        10.0, [] { return std::unique_ptr<DemoScene>(new TractrixScene(TractrixSceneSettings{})); }},

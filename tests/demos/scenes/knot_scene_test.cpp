@@ -28,12 +28,14 @@ struct KnotRun {
   KnotRegion held;                // after holding
   int insertions = 0, removals = 0;
   int maxControlPoints = 0;
+  double meanHeldTension = 0.0;   // N, end tension averaged from the tight to the held state
 };
 
 // Runs the scene for `seconds`, recording the knot when it first forms (`looseAt`), at `tightAt` and
 // at the end; checks the overlap bound at every step.
 KnotRun runKnot(KnotScene& scene, double looseAt, double tightAt, double seconds) {
   KnotRun run;
+  int heldSteps = 0;
   const double diameter = 2.0 * scene.rope().rod().settings().radius;
   const int steps = static_cast<int>(std::lround(seconds / scene.timeStep()));
   for (int i = 0; i < steps; ++i) {
@@ -46,8 +48,13 @@ KnotRun runKnot(KnotScene& scene, double looseAt, double tightAt, double seconds
     const KnotRegion knot = scene.knot();
     if (run.looseLength == 0.0 && scene.time() >= looseAt && knot.found) run.looseLength = knot.length;
     if (std::abs(scene.time() - tightAt) < 0.5 * scene.timeStep()) run.tight = knot;
+    if (scene.time() >= tightAt) {
+      run.meanHeldTension += scene.endStrain() * scene.rope().rod().settings().axialStiffness();
+      ++heldSteps;
+    }
   }
   run.held = scene.knot();
+  run.meanHeldTension /= std::max(1, heldSteps);
   return run;
 }
 
@@ -78,12 +85,13 @@ void expectTightKnot(const KnotScene& scene, const KnotRun& run, double maxExten
 
 TEST(KnotScene, PulledByTheGrippersTightensAndHolds) {
   KnotScene scene(KnotSceneSettings{});
-  // Pull from 0.5 s; measured: tight (tension reached) by about 3.5 s.
-  const KnotRun run = runKnot(scene, 0.5, 4.0, 5.0);
+  // Pull from 0.5 s; measured: the tension is reached at about 2.5 s, and the knot settles by 5.5 s
+  // (it creeps tighter by 20% in between while the grippers hold the tension).
+  const KnotRun run = runKnot(scene, 0.5, 5.5, 6.5);
   expectTightKnot(scene, run, 3.5);
-  // Force control: the ends settle at the set tension (within the controller's 25%).
-  const double tension = scene.endStrain() * scene.rope().rod().settings().axialStiffness();
-  EXPECT_NEAR(tension, KnotSceneSettings{}.pullTension, 0.25 * KnotSceneSettings{}.pullTension);
+  // Force control: the ends hold the set tension on average (the instantaneous strain carries the
+  // rope's axial waves, +-30%).
+  EXPECT_NEAR(run.meanHeldTension, KnotSceneSettings{}.pullTension, 0.1 * KnotSceneSettings{}.pullTension);
 }
 
 TEST(KnotScene, BothEndsFixedItTightensUnderItsOwnWeight) {

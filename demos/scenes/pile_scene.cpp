@@ -1,0 +1,124 @@
+#include "demos/scenes/pile_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "demos/scenes/knot_scene.h"
+#include "rope/common/error.h"
+
+namespace rope::demos {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kPointSpacing = 0.03;  // m along the helix between polyline points
+
+void validate(const PileSceneSettings& settings) {
+  requirePositive("settings.ropeLength", settings.ropeLength);
+  requirePositive("settings.dropHeight", settings.dropHeight);
+  requirePositive("settings.coilRadius", settings.coilRadius);
+  requirePositive("settings.coilPitch", settings.coilPitch);
+  requireNonNegative("settings.tilt", settings.tilt);
+  if (settings.tilt > 1.0) throw InvalidArgument("settings.tilt", formatValue(settings.tilt), "must be <= 1 rad");
+  requirePositive("settings.timeStep", settings.timeStep);
+  settings.rod.validate();
+  settings.bridge.validate();
+  if (settings.coilPitch < 6.0 * settings.rod.radius) {
+    throw InvalidArgument("settings.coilPitch", formatValue(settings.coilPitch),
+                          "must be at least 3 rope diameters (" + formatValue(6.0 * settings.rod.radius) + " m)");
+  }
+}
+
+}  // namespace
+
+RodSettings PileSceneSettings::defaultRod() {
+  RodSettings rod = KnotSceneSettings::defaultRod();
+  rod.maxControlPoints = 128;
+  return rod;
+}
+
+bullet::BulletRopeSettings PileSceneSettings::defaultBridge() { return KnotSceneSettings::defaultBridge(); }
+
+PointList pileCoilPolyline(const PileSceneSettings& settings) {
+  validate(settings);
+  const double turnLength = std::hypot(2.0 * kPi * settings.coilRadius, settings.coilPitch);
+  const double turns = settings.ropeLength / turnLength;
+  const int count = std::max(8, static_cast<int>(std::ceil(settings.ropeLength / kPointSpacing)));
+  const double c = std::cos(settings.tilt), s = std::sin(settings.tilt);
+  PointList points;
+  double lowest = 0.0;
+  for (int i = 0; i <= count; ++i) {
+    const double u = static_cast<double>(i) / count;
+    const double angle = 2.0 * kPi * turns * u;
+    const Vec3 local(settings.coilRadius * std::cos(angle), settings.coilPitch * turns * u,
+                     settings.coilRadius * std::sin(angle));
+    const Vec3 p(local.x(), c * local.y() - s * local.z(), s * local.y() + c * local.z());  // lean about x
+    lowest = i == 0 ? p.y() : std::min(lowest, p.y());
+    points.push_back(p);
+  }
+  for (Vec3& p : points) p.y() += settings.dropHeight + settings.rod.radius - lowest;
+  return points;
+}
+
+PileScene::PileScene(const PileSceneSettings& settings) : settings_(settings) {
+  const PointList points = pileCoilPolyline(settings);  // validates
+  physics_.addGround(0.0);
+  rope_ = std::make_unique<bullet::RopeObject>(Rod::fromPolyline(settings.rod, points, Rod::RestShape::kAsGiven),
+                                               settings.bridge);
+  physics_.ropes().addRope(*rope_);
+}
+
+StepMeasurements PileScene::step() {
+  const btScalar h = static_cast<btScalar>(settings_.timeStep);
+  physics_.world().stepSimulation(h, 1, h);
+  time_ += settings_.timeStep;
+  const bullet::ContactReport& report = physics_.ropes().lastReport();
+  const bullet::RopeStepRecord& record = rope_->lastStep();
+  if (!record.ok) throw std::runtime_error(std::string("pile: rope step failed: ") + record.failure);
+  if (*report.ropeContactFailure != '\0') throw std::runtime_error(std::string("pile: ") + report.ropeContactFailure);
+  StepMeasurements measurements = measure();
+  measurements.insertions = record.insertions;
+  measurements.removals = record.removals;
+  return measurements;
+}
+
+StepMeasurements PileScene::measure() const {
+  StepMeasurements measurements;
+  const Rod& rod = rope_->rod();
+  measurements.controlPoints = rod.controlPointCount();
+  measurements.maxStrain = rod.maxStrain();
+  measurements.maxPenetration = rope_->lastStep().maxPenetration;
+  measurements.maxSelfOverlap = physics_.ropes().lastReport().maxSelfOverlap();
+  measurements.series = {{"self_contacts", static_cast<double>(rope_->lastStep().ropeContacts)},
+                         {"ground_contacts", static_cast<double>(rope_->lastStep().contacts)},
+                         {"heap_height_m", heapHeight()},
+                         {"kinetic_energy_j", rod.kineticEnergy()}};
+  return measurements;
+}
+
+double PileScene::heapHeight() const {
+  const Rod& rod = rope_->rod();
+  constexpr int kSamples = 400;
+  double highest = rod.position(rod.beginParameter()).y();
+  for (int i = 1; i <= kSamples; ++i) {
+    const double s = std::min(rod.endParameter(), rod.beginParameter() + (rod.endParameter() - rod.beginParameter()) * i / kSamples);
+    highest = std::max(highest, rod.position(s).y());
+  }
+  return highest;
+}
+
+void PileScene::draw(render::Scene& scene) const {
+  physics_.draw(scene);
+  drawRope(scene, *rope_);
+}
+
+std::optional<render::Camera> PileScene::camera() const {
+  render::Camera camera;
+  camera.target = Vec3(0.0, 0.12, 0.0);
+  camera.eye = camera.target + Vec3(0.45, 0.4, 0.6);
+  return camera;
+}
+
+}  // namespace rope::demos

@@ -22,7 +22,7 @@ struct PileSceneSettings {
   RodSettings rod = defaultRod();
   bullet::BulletRopeSettings bridge = defaultBridge();
 
-  // The knot scene's cord (5 mm radius, limp, damped), up to 128 control points.
+  // The knot scene's cord (5 mm radius, limp), more stiffness damping, up to 128 control points.
   static RodSettings defaultRod();
   static bullet::BulletRopeSettings defaultBridge();  // the knot scene's contact (1e4 N/m, mu 0.3)
 };

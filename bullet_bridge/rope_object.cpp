@@ -73,6 +73,40 @@ RopeObject::RopeObject(Rod rod, const BulletRopeSettings& settings)
 
 RopeObject::~RopeObject() {
   if (world_ != nullptr) world_->removeRope(*this);
+  for (const CutPartner& partner : cutPartners_) {
+    auto& theirs = const_cast<RopeObject*>(partner.rope)->cutPartners_;
+    theirs.erase(std::remove_if(theirs.begin(), theirs.end(), [this](const CutPartner& p) { return p.rope == this; }),
+                 theirs.end());
+  }
+}
+
+std::unique_ptr<RopeObject> RopeObject::cut(double s) {
+  requireParameter(rod_, s);
+  for (const Attachment& attachment : attachments_) {
+    if (attachment.body != nullptr && attachment.s == s) {
+      throw InvalidArgument("s", formatValue(s), "a body attachment is at the cut");
+    }
+  }
+  std::pair<Rod, Rod> pieces = rod_.cut(s);  // throws (nothing changed) for an end or a pin at s
+  auto piece = std::make_unique<RopeObject>(std::move(pieces.second), settings_);
+  rod_ = std::move(pieces.first);
+  for (auto it = attachments_.begin(); it != attachments_.end();) {
+    if (it->s > s) {
+      piece->attachments_.push_back(*it);
+      it = attachments_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  piece->nextAttachmentId_ = nextAttachmentId_;
+  cutPartners_.push_back({piece.get(), s, s});
+  piece->cutPartners_.push_back({this, s, s});
+  contacts_.clear();
+  lastStep_ = RopeStepRecord();
+  lastStep_.rope = this;
+  proxies_->updateBoxes(rod_, settings_.initialPredictionTime, settings_.speculativeMargin);
+  if (world_ != nullptr) world_->addRope(*piece);
+  return piece;
 }
 
 void RopeObject::enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld) {

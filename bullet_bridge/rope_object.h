@@ -61,6 +61,24 @@ class RopeObject {
   void removeAttachment(int id);
   const std::vector<Attachment>& attachments() const { return attachments_; }
 
+  // ---- cutting ([A] §5.1) ----
+  // Cuts the rope at s (strictly inside; not exactly at a pin or a body attachment): this object keeps
+  // [beginParameter, s] and the returned one is [s, endParameter] (Rod::cut: the two pieces share no
+  // basis function, so no mass, energy or force term). Positions, velocities, rest state, pins and
+  // attachments go to the piece they lie on; attachment ids are kept. If this rope is in a world, the
+  // new piece is added to it with the same settings, its own capsules and contacts. The two cut ends
+  // start where they were, overlapping: until they part, contact between the pieces within
+  // selfContactExclusion of the cut is excluded as if they were still one rope. Throws
+  // InvalidArgument ("s") and changes nothing for a bad s. The caller owns the new piece.
+  std::unique_ptr<RopeObject> cut(double s);
+  // The pieces this rope was cut from or into, with the cut's parameter on each (exclusion above).
+  struct CutPartner {
+    const RopeObject* rope = nullptr;
+    double ownEnd = 0.0;      // parameter of the cut end on this rope
+    double partnerEnd = 0.0;  // parameter of the cut end on the partner
+  };
+  const std::vector<CutPartner>& cutPartners() const { return cutPartners_; }
+
   // ---- last substep ----
   // Contacts of the last substep; with friction, a contact's force is the sum over the knots it was
   // shared to (BulletRopeSettings::contactKnotSpacing).
@@ -109,6 +127,7 @@ class RopeObject {
 
   Rod rod_;
   BulletRopeSettings settings_;
+  std::vector<CutPartner> cutPartners_;
   std::unique_ptr<CapsuleProxies> proxies_;
   RopeWorld* world_ = nullptr;
   std::vector<Attachment> attachments_;

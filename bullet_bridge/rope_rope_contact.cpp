@@ -97,9 +97,25 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     const std::vector<double>& arcA = restArc_[static_cast<size_t>(pair.ropeA)];
     const CapsuleEnd* endsA = &ends_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)];
     const CapsuleEnd* endsB = &ends_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)];
+    // Two pieces cut from one rope count as one rope near their cut (their ends start overlapping).
+    const RopeObject::CutPartner* cut = nullptr;
+    if (!self) {
+      for (const RopeObject::CutPartner& partner : ropeA.cutPartners()) {
+        if (partner.rope == &ropeB) cut = &partner;
+      }
+    }
+    double cutArcA = 0.0, cutArcB = 0.0;
+    if (cut != nullptr) {
+      cutArcA = restArcAt(rodA, arcA, cut->ownEnd);
+      cutArcB = restArcAt(rodB, restArc_[static_cast<size_t>(pair.ropeB)], cut->partnerEnd);
+    }
     if (self) {
       // Skip pairs whose every point pair is excluded (neighbouring capsules, which always overlap).
       if (std::max(std::abs(endsB[1].arc - endsA[0].arc), std::abs(endsA[1].arc - endsB[0].arc)) < exclusion) continue;
+    } else if (cut != nullptr) {
+      const double farthest = std::max(std::abs(endsA[0].arc - cutArcA), std::abs(endsA[1].arc - cutArcA)) +
+                              std::max(std::abs(endsB[0].arc - cutArcB), std::abs(endsB[1].arc - cutArcB));
+      if (farthest < exclusion) continue;
     }
     const Capsule capsuleA = ropeA.proxies().capsule(pair.capsuleA);
     const Capsule capsuleB = ropeB.proxies().capsule(pair.capsuleB);
@@ -118,6 +134,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     const double arcSA = restArcAt(rodA, arcA, sA);
     const double arcSB = restArcAt(rodB, restArc_[static_cast<size_t>(pair.ropeB)], sB);
     if (self && std::abs(arcSA - arcSB) < exclusion) continue;
+    if (cut != nullptr && std::abs(arcSA - cutArcA) + std::abs(arcSB - cutArcB) < exclusion) continue;
 
     const Vec3 pointA = rodA.position(sA);
     const Vec3 pointB = rodB.position(sB);

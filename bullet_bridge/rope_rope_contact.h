@@ -15,8 +15,8 @@
 // end-of-step normal force, at most 6 small solves per substep (the ropes' factors are reused).
 //
 // Excluded: two points of one rope closer than BulletRopeSettings::selfContactExclusion along the rest
-// curve (neighbouring capsules always overlap; that is the rope, not a contact), and ropes with
-// selfContact off. The contact points become interaction knots ([A] §4), so the rope refines where
+// curve (neighbouring capsules always overlap; that is the rope, not a contact), the same across the
+// cut of two pieces cut from one rope (RopeObject::cut), and ropes with selfContact off. The contact points become interaction knots ([A] §4), so the rope refines where
 // it presses on itself.
 
 #include <vector>

@@ -1,4 +1,5 @@
 #include "demos/scenes/crane_scene.h"
+#include "demos/scenes/cut_scene.h"
 #include "demos/scenes/demo_scene.h"
 #include "demos/scenes/drape_scene.h"
 #include "demos/scenes/hang_scene.h"
@@ -27,6 +28,8 @@ const std::vector<SceneEntry>& sceneCatalogue() {
        5.0, [] { return std::unique_ptr<DemoScene>(new DrapeScene(DrapeSceneSettings::thinBar())); }},
       {"crane", "Bullet world: a 10 kg box on a 0.01 kg/m rope, attached at both ends; the top is lifted",
        8.0, [] { return std::unique_ptr<DemoScene>(new CraneScene(CraneSceneSettings{})); }},
+      {"cut", "Bullet world: a box swinging on a rope; the rope is cut at 1 s, the box falls, the top piece swings on",
+       3.0, [] { return std::unique_ptr<DemoScene>(new CutScene(CutSceneSettings{})); }},
   };
   return catalogue;
 }

@@ -1,0 +1,487 @@
+// rope_compare [--quick] [--out PREFIX] [--repeats N]
+//
+// Runs the five comparison scenes (compare.h) with SplineRope, Bullet's soft-body rope and a MuJoCo
+// chain, sweeping each peer's resolution and solver setting, and writes PREFIX.json (every trial),
+// PREFIX.md (the summary table and the whole sweep) and PREFIX.dat (accuracy against cost, for
+// demos/compare/plot.gp). Wall time per simulated second is the median over --repeats runs made in
+// this one process, the engines alternating within each round. --quick is the smoke run for the
+// default tests: one setting per engine and scene, short runs; it fails (exit 1) if SplineRope fails
+// a scene (a step failure, or the thin bar not held).
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <mujoco/mujoco.h>
+
+#include "demos/compare/compare.h"
+#include "demos/compare/scene_specs.h"
+
+namespace rope::compare {
+namespace {
+
+constexpr double kTargetError = 0.01;  // "equal accuracy": |sag error| and |strain error| within 1 %
+
+struct Entry {
+  Engine engine;
+  Scene scene;
+  Setting setting;
+  Trial trial;                 // the first run (accuracy; all engines are deterministic)
+  std::vector<double> costs;   // wall s per simulated s, one per repeat
+  std::vector<double> stepUs;  // wall us per step, one per repeat
+  double medianCost() const { return median(costs); }
+  double medianStepUs() const { return median(stepUs); }
+  static double median(std::vector<double> v) {
+    if (v.empty()) return kNaN;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  }
+};
+
+Setting res(int resolution, int iterations = 1, int substeps = 1, bool stretch = false) {
+  Setting s;
+  s.resolution = resolution;
+  s.iterations = iterations;
+  s.substeps = substeps;
+  s.stretch = stretch;
+  return s;
+}
+
+struct Plan {
+  Scene scene;
+  Limits limits;
+  std::map<Engine, std::vector<Setting>> settings;
+};
+
+std::vector<Plan> fullPlan(double wallBudget) {
+  std::vector<Plan> plans;
+  Limits limits;
+  limits.wallBudget = wallBudget;
+  {
+    Plan p{Scene::kCatenary, limits, {}};
+    p.settings[Engine::kSplineRope] = {res(6), res(8), res(12), res(16)};
+    for (int n : {16, 32, 64, 128})
+      for (int it : {1, 4, 16, 64}) p.settings[Engine::kSoftBody].push_back(res(n, it));
+    for (int n : {8, 16, 32, 64})
+      for (int sub : {1, 4}) p.settings[Engine::kMuJoCo].push_back(res(n, 1, sub));
+    plans.push_back(p);
+  }
+  {
+    Plan p{Scene::kHeavyLoad, limits, {}};
+    p.settings[Engine::kSplineRope] = {res(8), res(12)};
+    for (int n : {8, 16, 32, 64})
+      for (int it : {4, 16, 64, 256}) p.settings[Engine::kSoftBody].push_back(res(n, it));
+    p.settings[Engine::kMuJoCo] = {res(16)};
+    for (int n : {8, 16, 32})
+      for (int sub : {1, 16, 64}) p.settings[Engine::kMuJoCo].push_back(res(n, 1, sub, true));
+    plans.push_back(p);
+  }
+  {
+    Plan p{Scene::kThinBar, limits, {}};
+    p.settings[Engine::kSplineRope] = {res(16)};
+    for (int n : {16, 33, 64, 128}) p.settings[Engine::kSoftBody].push_back(res(n, 16));
+    for (int n : {16, 33, 64}) p.settings[Engine::kMuJoCo].push_back(res(n));
+    plans.push_back(p);
+  }
+  {
+    Plan p{Scene::kDrape, limits, {}};
+    p.settings[Engine::kSplineRope] = {res(16)};
+    p.settings[Engine::kSoftBody] = {res(32, 16), res(64, 16)};
+    p.settings[Engine::kMuJoCo] = {res(32), res(64)};
+    plans.push_back(p);
+  }
+  return plans;
+}
+
+std::vector<Plan> quickPlan() {
+  std::vector<Plan> plans;
+  auto limits = [](double seconds) {
+    Limits l;
+    l.wallBudget = 4.0;
+    l.seconds = seconds;
+    return l;
+  };
+  plans.push_back({Scene::kCatenary, limits(1.5), {{Engine::kSplineRope, {res(12)}}, {Engine::kSoftBody, {res(32, 4)}}, {Engine::kMuJoCo, {res(16)}}}});
+  plans.push_back({Scene::kHeavyLoad, limits(1.5), {{Engine::kSplineRope, {res(12)}}, {Engine::kSoftBody, {res(16, 16)}}, {Engine::kMuJoCo, {res(8, 1, 16, true)}}}});
+  plans.push_back({Scene::kThinBar, limits(1.0), {{Engine::kSplineRope, {res(16)}}, {Engine::kSoftBody, {res(33, 16)}}, {Engine::kMuJoCo, {res(33)}}}});
+  plans.push_back({Scene::kDrape, limits(0.5), {{Engine::kSplineRope, {res(16)}}, {Engine::kSoftBody, {res(32, 16)}}, {Engine::kMuJoCo, {res(32)}}}});
+  return plans;
+}
+
+const std::vector<Engine> kEngines = {Engine::kSplineRope, Engine::kSoftBody, Engine::kMuJoCo};
+
+// Runs every setting of a plan `repeats` times; each round visits the engines in turn (the first
+// engine rotating from round to round), one setting of each at a time.
+std::vector<Entry> runPlan(const Plan& plan, int repeats) {
+  std::vector<Entry> entries;
+  std::map<Engine, std::vector<size_t>> index;
+  for (Engine e : kEngines)
+    for (const Setting& s : plan.settings.at(e)) {
+      index[e].push_back(entries.size());
+      entries.push_back({e, plan.scene, s, Trial{}, {}, {}});
+    }
+  size_t longest = 0;
+  for (Engine e : kEngines) longest = std::max(longest, plan.settings.at(e).size());
+  for (int round = 0; round < repeats; ++round) {
+    for (size_t i = 0; i < longest; ++i) {
+      for (size_t k = 0; k < kEngines.size(); ++k) {
+        const Engine e = kEngines[(k + round) % kEngines.size()];
+        if (i >= index[e].size()) continue;
+        Entry& entry = entries[index[e][i]];
+        if (round > 0 && !entry.trial.ok()) continue;  // a failed or too slow run is not repeated
+        const Trial trial = run(e, plan.scene, entry.setting, plan.limits);
+        if (round == 0) entry.trial = trial;
+        entry.costs.push_back(trial.costPerSecond());
+        entry.stepUs.push_back(trial.stepMicroseconds());
+      }
+    }
+  }
+  return entries;
+}
+
+std::vector<Entry> runScaling(const std::vector<int>& sizes, int repeats, int softIterations, double wallBudget) {
+  std::vector<Entry> entries;
+  Limits limits;
+  limits.wallBudget = wallBudget;
+  for (int n : sizes)
+    for (Engine e : kEngines)
+      entries.push_back({e, Scene::kScaling, e == Engine::kSoftBody ? res(n, softIterations) : res(n), Trial{}, {}, {}});
+  for (int round = 0; round < repeats; ++round)
+    for (size_t i = 0; i < entries.size(); i += kEngines.size())
+      for (size_t k = 0; k < kEngines.size(); ++k) {
+        Entry& entry = entries[i + (k + round) % kEngines.size()];
+        // The MuJoCo chain's dense 2n x 2n mass matrix makes n = 1024 cost seconds per step: time it once.
+        if (round > 0 && (!entry.trial.ok() || entry.trial.wallSeconds > 2.0)) continue;
+        const Trial trial = run(entry.engine, Scene::kScaling, entry.setting, limits);
+        if (round == 0) entry.trial = trial;
+        entry.costs.push_back(trial.costPerSecond());
+        entry.stepUs.push_back(trial.stepMicroseconds());
+      }
+  return entries;
+}
+
+double metric(const Entry& e, const char* name) {
+  const auto it = e.trial.metrics.find(name);
+  return it == e.trial.metrics.end() ? kNaN : it->second;
+}
+
+// The cheapest ok entry of an engine whose |metric| is within the target, or nullptr.
+const Entry* cheapestWithin(const std::vector<Entry>& entries, Engine engine, const char* name) {
+  const Entry* best = nullptr;
+  for (const Entry& e : entries) {
+    if (e.engine != engine || !e.trial.ok()) continue;
+    const double err = metric(e, name);
+    if (!(std::abs(err) <= kTargetError)) continue;
+    if (!best || e.medianCost() < best->medianCost()) best = &e;
+  }
+  return best;
+}
+
+// The ok entry of an engine with the smallest |metric|, or nullptr.
+const Entry* mostAccurate(const std::vector<Entry>& entries, Engine engine, const char* name) {
+  const Entry* best = nullptr;
+  for (const Entry& e : entries) {
+    if (e.engine != engine || !e.trial.ok() || std::isnan(metric(e, name))) continue;
+    if (!best || std::abs(metric(e, name)) < std::abs(metric(*best, name))) best = &e;
+  }
+  return best;
+}
+
+std::string fmt(const char* format, double value) {
+  if (std::isnan(value)) return "n/a";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+std::string percent(double x) { return fmt("%+.2f %%", 100 * x); }
+std::string ms(double seconds) { return fmt(seconds < 0.01 ? "%.2f" : seconds < 1 ? "%.1f" : "%.0f", 1e3 * seconds); }
+
+std::string describeFailures(const std::vector<Entry>& entries, Engine engine) {
+  std::map<std::string, int> counts;
+  for (const Entry& e : entries)
+    if (e.engine == engine && !e.trial.ok()) counts[e.trial.status] += 1;
+  std::string text;
+  for (const auto& [status, count] : counts) text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + status;
+  return text;
+}
+
+// "setting: error, cost ms/s" for the cheapest within target, or why there is none.
+std::string accuracyCell(const std::vector<Entry>& entries, Engine engine, const char* name) {
+  const Entry* best = cheapestWithin(entries, engine, name);
+  std::ostringstream cell;
+  if (best) {
+    cell << best->setting.label() << " (" << best->trial.dofs << " dof): " << percent(metric(*best, name)) << ", "
+         << ms(best->medianCost()) << " ms";
+  } else {
+    const Entry* closest = mostAccurate(entries, engine, name);
+    cell << "**never within 1 %**";
+    if (closest)
+      cell << "; best " << closest->setting.label() << ": " << percent(metric(*closest, name)) << ", "
+           << ms(closest->medianCost()) << " ms";
+  }
+  const std::string failures = describeFailures(entries, engine);
+  if (!failures.empty()) cell << " [" << failures << " of the sweep]";
+  return cell.str();
+}
+
+std::string ratioCell(const std::vector<Entry>& entries, Engine engine, const char* name) {
+  const Entry* ours = cheapestWithin(entries, Engine::kSplineRope, name);
+  const Entry* theirs = cheapestWithin(entries, engine, name);
+  if (!ours) return "SplineRope not within 1 %";
+  if (!theirs) return "no peer setting within 1 %";
+  return fmt("%.1f×", theirs->medianCost() / ours->medianCost());
+}
+
+std::string thinBarCell(const std::vector<Entry>& entries, Engine engine, double barTop) {
+  std::string cell;
+  for (const Entry& e : entries) {
+    if (e.engine != engine) continue;
+    const bool held = metric(e, "highest_m") > barTop - 0.1;
+    const std::string what = !e.trial.ok() ? e.trial.status : held ? "held" : "fell through";
+    cell += (cell.empty() ? "" : "; ") + e.setting.label() + ": " + what;
+  }
+  return cell;
+}
+
+std::string drapeCell(const std::vector<Entry>& entries, Engine engine, double radius) {
+  std::string cell;
+  for (const Entry& e : entries) {
+    if (e.engine != engine) continue;
+    std::ostringstream text;
+    text << e.setting.label() << ": ";
+    if (!e.trial.ok()) text << e.trial.status;
+    else
+      text << fmt("%.2f", 1e3 * metric(e, "max_penetration_m")) << " / "
+           << fmt("%.2f", 1e3 * metric(e, "resting_penetration_m")) << " mm ("
+           << fmt("%.0f", 100 * metric(e, "resting_penetration_m") / radius) << " % of r)";
+    cell += (cell.empty() ? "" : "; ") + text.str();
+  }
+  return cell;
+}
+
+void writeJsonString(std::ostream& out, const std::string& s) {
+  out << '"';
+  for (char c : s) {
+    if (c == '"' || c == '\\') out << '\\' << c;
+    else if (static_cast<unsigned char>(c) < 0x20) out << ' ';
+    else out << c;
+  }
+  out << '"';
+}
+
+void writeJsonNumber(std::ostream& out, double x) {
+  if (std::isfinite(x)) out << x;
+  else out << "null";
+}
+
+void writeJson(const std::string& path, const std::vector<Entry>& entries, int repeats, double totalSeconds, bool quick,
+               const std::map<std::string, std::string>& summary) {
+  std::ofstream out(path);
+  out.precision(6);
+  out << "{\n  \"program\": \"rope_compare\",\n  \"quick\": " << (quick ? "true" : "false") << ",\n  \"repeats\": " << repeats
+      << ",\n  \"mujoco_version\": ";
+  writeJsonString(out, mj_versionString());
+  out << ",\n  \"target_error\": " << kTargetError << ",\n  \"total_wall_s\": " << totalSeconds << ",\n  \"summary\": {";
+  bool first = true;
+  for (const auto& [key, value] : summary) {
+    out << (first ? "\n    " : ",\n    ");
+    writeJsonString(out, key);
+    out << ": ";
+    writeJsonString(out, value);
+    first = false;
+  }
+  out << "\n  },\n  \"trials\": [";
+  first = true;
+  for (const Entry& e : entries) {
+    out << (first ? "\n" : ",\n") << "    {\"scene\": \"" << sceneName(e.scene) << "\", \"engine\": \"" << engineName(e.engine)
+        << "\", \"setting\": {\"resolution\": " << e.setting.resolution << ", \"iterations\": " << e.setting.iterations
+        << ", \"substeps\": " << e.setting.substeps << ", \"stiffness\": " << e.setting.stiffness
+        << ", \"stretch\": " << (e.setting.stretch ? "true" : "false") << "}, \"status\": ";
+    writeJsonString(out, e.trial.status);
+    out << ", \"dofs\": " << e.trial.dofs << ", \"simulated_s\": " << e.trial.simulatedSeconds
+        << ", \"steps\": " << e.trial.steps << ", \"wall_per_simulated_s\": {\"median\": ";
+    writeJsonNumber(out, e.medianCost());
+    out << ", \"samples\": [";
+    for (size_t i = 0; i < e.costs.size(); ++i) {
+      out << (i ? ", " : "");
+      writeJsonNumber(out, e.costs[i]);
+    }
+    out << "]}, \"step_us_median\": ";
+    writeJsonNumber(out, e.medianStepUs());
+    out << ", \"metrics\": {";
+    bool firstMetric = true;
+    for (const auto& [name, value] : e.trial.metrics) {
+      out << (firstMetric ? "" : ", ") << '"' << name << "\": ";
+      writeJsonNumber(out, value);
+      firstMetric = false;
+    }
+    out << "}}";
+    first = false;
+  }
+  out << "\n  ]\n}\n";
+}
+
+// gnuplot data: one block per (scene, engine), columns cost (wall s per simulated s), |error| in %,
+// resolution; blocks separated by two blank lines so that `index` selects them (plot.gp).
+void writePlotData(const std::string& path, const std::vector<Entry>& entries) {
+  std::ofstream out(path);
+  out << "# rope_compare: accuracy against cost. Blocks (gnuplot index): ";
+  int block = 0;
+  for (Scene scene : {Scene::kCatenary, Scene::kHeavyLoad}) {
+    const char* name = scene == Scene::kCatenary ? "sag_error" : "strain_error";
+    for (Engine engine : kEngines) {
+      out << (block ? "\n\n" : "\n") << "# " << block << ": " << sceneName(scene) << ' ' << engineName(engine)
+          << "\n# wall_s_per_simulated_s abs_error_percent resolution\n";
+      bool any = false;
+      for (const Entry& e : entries) {
+        if (e.scene != scene || e.engine != engine || !e.trial.ok() || std::isnan(metric(e, name))) continue;
+        out << e.medianCost() << ' ' << std::max(1e-3, 100 * std::abs(metric(e, name))) << ' ' << e.setting.resolution << '\n';
+        any = true;
+      }
+      if (!any) out << "nan nan 0\n";  // keeps the block indices stable
+      ++block;
+    }
+  }
+}
+
+int main(int argc, char** argv) {
+  bool quick = false;
+  std::string out = "rope_compare";
+  int repeats = 3;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--quick") quick = true;
+    else if (arg == "--out" && i + 1 < argc) out = argv[++i];
+    else if (arg == "--repeats" && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
+    else {
+      std::cerr << "usage: rope_compare [--quick] [--out PREFIX] [--repeats N]\n";
+      return 2;
+    }
+  }
+  if (quick) repeats = 1;
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+
+  std::vector<Entry> all;
+  std::map<Scene, std::vector<Entry>> byScene;
+  for (const Plan& plan : quick ? quickPlan() : fullPlan(15.0)) {
+    std::fprintf(stderr, "[%6.1f s] %s\n", elapsed(), sceneName(plan.scene));
+    byScene[plan.scene] = runPlan(plan, repeats);
+    all.insert(all.end(), byScene[plan.scene].begin(), byScene[plan.scene].end());
+  }
+  // The soft body's scaling runs use the iterations of its cheapest catenary setting within 1 %.
+  const Entry* softCatenary = cheapestWithin(byScene[Scene::kCatenary], Engine::kSoftBody, "sag_error");
+  const int softIterations = softCatenary ? softCatenary->setting.iterations : 16;
+  std::fprintf(stderr, "[%6.1f s] scaling\n", elapsed());
+  const std::vector<int> sizes = quick ? std::vector<int>{16, 64} : std::vector<int>{16, 64, 256, 1024};
+  byScene[Scene::kScaling] = runScaling(sizes, repeats, softIterations, quick ? 2.0 : 8.0);
+  all.insert(all.end(), byScene[Scene::kScaling].begin(), byScene[Scene::kScaling].end());
+  const double total = elapsed();
+
+  // ---- summary table ----
+  const DrapeSpec thinBar = DrapeSpec::thinBar();
+  const DrapeSpec box = DrapeSpec::box();
+  std::map<std::string, std::string> summary;
+  std::ostringstream md;
+  md << "| scene (figure) | SplineRope | Bullet soft body (`CreateRope`) | MuJoCo " << mj_versionString()
+     << " chain (`composite rope`) |\n|---|---|---|---|\n";
+  auto row = [&](const std::string& key, const std::string& title, const std::string& a, const std::string& b,
+                 const std::string& c) {
+    md << "| " << title << " | " << a << " | " << b << " | " << c << " |\n";
+    summary[key + ".splinerope"] = a;
+    summary[key + ".bullet_softbody"] = b;
+    summary[key + ".mujoco_chain"] = c;
+  };
+  const auto& cat = byScene[Scene::kCatenary];
+  const auto& heavy = byScene[Scene::kHeavyLoad];
+  row("catenary", "(1) catenary: cheapest setting with \\|sag error\\| ≤ 1 %: error, wall ms per simulated s",
+      accuracyCell(cat, Engine::kSplineRope, "sag_error"), accuracyCell(cat, Engine::kSoftBody, "sag_error"),
+      accuracyCell(cat, Engine::kMuJoCo, "sag_error"));
+  row("catenary_ratio", "(1) cost at equal accuracy, peer ÷ SplineRope", "1×", ratioCell(cat, Engine::kSoftBody, "sag_error"),
+      ratioCell(cat, Engine::kMuJoCo, "sag_error"));
+  row("heavy_load", "(2) heavy load: cheapest setting with \\|strain error\\| ≤ 1 % vs W/(EA): error, wall ms per simulated s",
+      accuracyCell(heavy, Engine::kSplineRope, "strain_error"), accuracyCell(heavy, Engine::kSoftBody, "strain_error"),
+      accuracyCell(heavy, Engine::kMuJoCo, "strain_error"));
+  row("heavy_load_ratio", "(2) cost at equal accuracy, peer ÷ SplineRope", "1×",
+      ratioCell(heavy, Engine::kSoftBody, "strain_error"), ratioCell(heavy, Engine::kMuJoCo, "strain_error"));
+  const auto& bar = byScene[Scene::kThinBar];
+  row("thin_bar", "(3) thin bar (2 mm), dropped from 1 m: held or fell through", thinBarCell(bar, Engine::kSplineRope, thinBar.drape.obstacleTop),
+      thinBarCell(bar, Engine::kSoftBody, thinBar.drape.obstacleTop), thinBarCell(bar, Engine::kMuJoCo, thinBar.drape.obstacleTop));
+  const auto& drape = byScene[Scene::kDrape];
+  row("drape", "(4) drape on a box: max / resting penetration", drapeCell(drape, Engine::kSplineRope, box.drape.rod.radius),
+      drapeCell(drape, Engine::kSoftBody, box.drape.rod.radius), drapeCell(drape, Engine::kMuJoCo, box.drape.rod.radius));
+  std::map<Engine, std::string> scalingCells;
+  for (const Entry& e : byScene[Scene::kScaling]) {
+    std::string& cell = scalingCells[e.engine];
+    cell += (cell.empty() ? "" : " / ") + (e.trial.ok() ? fmt(e.medianStepUs() < 100 ? "%.1f" : "%.0f", e.medianStepUs()) : e.trial.status);
+  }
+  std::string sizeText;
+  for (int n : sizes) sizeText += (sizeText.empty() ? "" : " / ") + std::to_string(n);
+  row("scaling", "(5) hanging rope at " + sizeText + " nodes: µs per step" +
+                     (softIterations != 1 ? " (soft body at " + std::to_string(softIterations) + " iterations)" : ""),
+      scalingCells[Engine::kSplineRope], scalingCells[Engine::kSoftBody], scalingCells[Engine::kMuJoCo]);
+  // Per-size ratios against SplineRope.
+  std::string softRatio, mujocoRatio;
+  for (size_t i = 0; i + 2 < byScene[Scene::kScaling].size(); i += 3) {
+    const auto& s = byScene[Scene::kScaling];
+    softRatio += (softRatio.empty() ? "" : " / ") + fmt("%.1f×", s[i + 1].medianStepUs() / s[i].medianStepUs());
+    mujocoRatio += (mujocoRatio.empty() ? "" : " / ") + fmt("%.0f×", s[i + 2].medianStepUs() / s[i].medianStepUs());
+  }
+  row("scaling_ratio", "(5) time per step, peer ÷ SplineRope", "1×", softRatio, mujocoRatio);
+
+  // ---- full sweep ----
+  std::ostringstream sweep;
+  sweep << "| scene | engine | setting | dof | status | accuracy | wall ms per simulated s (median) | µs per step |\n"
+           "|---|---|---|---|---|---|---|---|\n";
+  for (const Entry& e : all) {
+    std::string accuracy;
+    if (e.scene == Scene::kCatenary) accuracy = "sag " + percent(metric(e, "sag_error"));
+    else if (e.scene == Scene::kHeavyLoad) accuracy = "strain " + percent(metric(e, "strain_error"));
+    else if (e.scene == Scene::kThinBar)
+      accuracy = metric(e, "highest_m") > thinBar.drape.obstacleTop - 0.1 ? "held" : "fell through";
+    else if (e.scene == Scene::kDrape)
+      accuracy = "penetration max " + fmt("%.2f", 1e3 * metric(e, "max_penetration_m")) + " mm, resting " +
+                 fmt("%.2f", 1e3 * metric(e, "resting_penetration_m")) + " mm";
+    sweep << "| " << sceneName(e.scene) << " | " << engineName(e.engine) << " | " << e.setting.label() << " | " << e.trial.dofs
+          << " | " << e.trial.status << " | " << accuracy << " | " << ms(e.medianCost()) << " | "
+          << fmt("%.1f", e.medianStepUs()) << " |\n";
+  }
+
+  char header[256];
+  std::snprintf(header, sizeof header, "rope_compare%s: %d repeat(s), %.0f s wall in total\n\n", quick ? " --quick" : "",
+                repeats, total);
+  std::ofstream(out + ".md") << header << md.str() << "\nEvery setting:\n\n" << sweep.str();
+  writeJson(out + ".json", all, repeats, total, quick, summary);
+  writePlotData(out + ".dat", all);
+  std::cout << header << md.str();
+  std::fprintf(stderr, "wrote %s.json, %s.md, %s.dat\n", out.c_str(), out.c_str(), out.c_str());
+
+  // The smoke check: SplineRope must run every scene and hold the thin bar.
+  bool ok = true;
+  for (const Entry& e : all)
+    if (e.engine == Engine::kSplineRope && !e.trial.ok()) {
+      std::fprintf(stderr, "FAIL: SplineRope %s: %s\n", sceneName(e.scene), e.trial.status.c_str());
+      ok = false;
+    }
+  for (const Entry& e : bar)
+    if (e.engine == Engine::kSplineRope && !(metric(e, "highest_m") > thinBar.drape.obstacleTop - 0.1)) {
+      std::fprintf(stderr, "FAIL: SplineRope fell through the thin bar\n");
+      ok = false;
+    }
+  return ok ? 0 : 1;
+}
+
+}  // namespace
+}  // namespace rope::compare
+
+int main(int argc, char** argv) { return rope::compare::main(argc, argv); }

@@ -1,0 +1,55 @@
+#pragma once
+// The physical scenes every engine runs, taken from SplineRope's own scene builders (so the
+// SplineRope side is exactly the demo scene) plus the quantities the peers need to match them.
+
+#include <Eigen/Core>
+
+#include "demos/scenes/crane_scene.h"
+#include "demos/scenes/drape_scene.h"
+#include "demos/scenes/hang_scene.h"
+
+namespace rope::compare {
+
+// (1) catenary: both ends pinned, drawn together to span over closeTime, then settle. Sag is
+// averaged over the last averagingWindow seconds (the ropes are lightly damped, not at rest).
+struct CatenarySpec {
+  demos::HangSceneSettings hang;  // the demo scene's defaults: 1.25 m over 1 m, r = 1 cm, E = 2e8 Pa
+  double seconds = 5.0;           // s simulated
+  double averagingWindow = 1.0;   // s
+  double analyticSag() const;     // m, inextensible catenary
+  double pinDistance(double t) const;  // m, HangScene's smoothstep schedule
+};
+
+// (2) heavy load: the crane scene without the lift (10 kg on 1 m of 0.01 kg/m rope, EA = 25.1 kN).
+// Strain = rope length / rest length - 1, averaged over the last averagingWindow seconds.
+struct HeavyLoadSpec {
+  demos::CraneSceneSettings crane = defaults();
+  double seconds = 4.0;
+  double averagingWindow = 1.0;
+  double expectedStrain() const;  // W / (EA) of the box's weight
+  static demos::CraneSceneSettings defaults();
+};
+
+// (3) thin bar (DrapeSceneSettings::thinBar()) and (4) drape over a box (the default drape scene).
+struct DrapeSpec {
+  demos::DrapeSceneSettings drape;
+  double seconds = 2.5;
+  double restingWindow = 0.5;  // s at the end over which the resting penetration is taken
+  static DrapeSpec thinBar();
+  static DrapeSpec box();
+  // The obstacle as a box: centre and half extents, m.
+  Eigen::Vector3d obstacleCentre() const;
+  Eigen::Vector3d obstacleHalfExtents() const;
+  // How far a sphere of the rope's radius at `point` reaches into the obstacle, m (0 if clear).
+  double penetration(const Eigen::Vector3d& point) const;
+};
+
+// (5) scaling: the catenary scene at a fixed resolution (no adaptivity), time per step only.
+struct ScalingSpec {
+  CatenarySpec catenary;
+  int maxSteps = 240;          // steps timed (after warmupSteps)
+  int warmupSteps = 24;
+  double wallBudget = 6.0;     // s per trial; a slow engine is timed over fewer steps (>= 2)
+};
+
+}  // namespace rope::compare

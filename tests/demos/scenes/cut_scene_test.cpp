@@ -1,0 +1,78 @@
+#include "demos/scenes/cut_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rope/common/error.h"
+
+namespace rope::demos {
+namespace {
+
+TEST(CutScene, CutRopeDropsTheBoxAndTheUpperPieceSwingsOnFromItsPin) {
+  const CutSceneSettings settings;
+  CutScene scene(settings);
+  const double g = scene.upper().rod().settings().gravity.norm();
+  btVector3 v1(0, 0, 0), v2(0, 0, 0);
+  double t1 = 0.0, t2 = 0.0;
+  double worstPinGap = 0.0;
+  int contactsBetweenPieces = 0;
+  double freeEndAtCut = 0.0;
+  const auto freeEndX = [&scene] { return scene.upper().rod().position(scene.upper().rod().endParameter()).x(); };
+  const int steps = static_cast<int>(std::lround((settings.cutTime + 0.4) / scene.timeStep()));
+  for (int i = 0; i < steps; ++i) {
+    scene.step();
+    worstPinGap = std::max(worstPinGap, scene.pinGap());
+    if (!scene.isCut()) continue;
+    for (const bullet::RopePairContactRecord& contact : scene.physics().ropes().lastReport().ropeContacts) {
+      if (contact.ropeA != contact.ropeB) ++contactsBetweenPieces;
+    }
+    const double since = scene.time() - settings.cutTime;
+    if (freeEndAtCut == 0.0) freeEndAtCut = freeEndX();
+    // The first 0.05 s let the attachment spring of the lower piece relax (it was under the box's weight).
+    if (t1 == 0.0 && since >= 0.05) {
+      t1 = scene.time();
+      v1 = scene.box().getLinearVelocity();
+    }
+    if (t2 == 0.0 && since >= 0.35) {
+      t2 = scene.time();
+      v2 = scene.box().getLinearVelocity();
+    }
+  }
+  ASSERT_TRUE(scene.isCut());
+  ASSERT_GT(t2, t1);
+  const btVector3 acceleration = (v2 - v1) / static_cast<btScalar>(t2 - t1);
+  ::testing::Test::RecordProperty("box_acceleration_y", std::to_string(static_cast<double>(acceleration.y())));
+  // Free fall: the lower piece (5 g) hangs on a 2 kg box and adds no drag.
+  EXPECT_NEAR(static_cast<double>(acceleration.y()), -g, 0.01 * g);
+  EXPECT_NEAR(static_cast<double>(acceleration.x()), 0.0, 0.01 * g);
+  EXPECT_NEAR(static_cast<double>(acceleration.z()), 0.0, 0.01 * g);
+  // The upper piece never leaves its pin and keeps swinging (cut near the end of a swing, its free end
+  // swings back towards the vertical by well over 5 cm in 0.4 s).
+  EXPECT_LT(worstPinGap, 1e-9);
+  EXPECT_GT(std::abs(freeEndX() - freeEndAtCut), 0.05);
+  // The pieces are two ropes: own capsules in the broadphase, no contact across the cut.
+  ASSERT_NE(scene.lower(), nullptr);
+  EXPECT_GT(scene.lower()->proxies().size(), 0);
+  EXPECT_NE(scene.lower()->proxies().proxy(0).object->getBroadphaseHandle(), nullptr);
+  EXPECT_EQ(scene.physics().ropes().ropes().size(), 2u);
+  EXPECT_EQ(contactsBetweenPieces, 0);
+  EXPECT_NEAR(scene.upper().rod().restLength() + scene.lower()->rod().restLength(), settings.ropeLength, 1e-12);
+}
+
+TEST(CutScene, RejectsBadSettingsNamingTheField) {
+  CutSceneSettings settings;
+  settings.cutFraction = 1.0;
+  try {
+    CutScene scene(settings);
+    ADD_FAILURE() << "accepted a cut at the end";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.parameter(), "settings.cutFraction");
+  }
+  settings = CutSceneSettings{};
+  settings.topHeight = 0.5;
+  EXPECT_THROW(CutScene{settings}, InvalidArgument);
+}
+
+}  // namespace
+}  // namespace rope::demos

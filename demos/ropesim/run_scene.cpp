@@ -67,7 +67,13 @@ RunStatistics runScene(const RopesimOptions& options) {
       const auto begin = Clock::now();
       drawList.clear();
       scene->draw(drawList);
-      if (frame == 0) camera = scene->camera().value_or(renderer->frameScene(drawList));
+      // A scene's own camera is asked every frame (it may follow the action); without one, the first
+      // frame is framed automatically and the camera stays there.
+      if (const std::optional<render::Camera> own = scene->camera()) {
+        camera = *own;
+      } else if (frame == 0) {
+        camera = renderer->frameScene(drawList);
+      }
       renderer->render(drawList, camera, image);
       renderSeconds += std::chrono::duration<double>(Clock::now() - begin).count();
       if (video) video->addFrame(image);

@@ -40,7 +40,8 @@ class DemoScene {
   virtual StepMeasurements measure() const = 0;
   // Adds the current geometry to a draw list (no GL involved).
   virtual void draw(render::Scene& scene) const = 0;
-  // A fixed camera, or nullopt to frame the first frame automatically.
+  // The camera for the current state (asked before every frame, so it may follow the action), or
+  // nullopt to frame the first frame automatically and keep that camera.
   virtual std::optional<render::Camera> camera() const { return std::nullopt; }
 };
 

@@ -196,13 +196,16 @@ StepMeasurements KnotScene::measure() const {
 
 void KnotScene::draw(render::Scene& scene) const {
   physics_.draw(scene);
-  drawRope(scene, *rope_);
+  drawRope(scene, *rope_, true);
 }
 
 std::optional<render::Camera> KnotScene::camera() const {
   render::Camera camera;
-  camera.target = Vec3(0.0, settings_.height - 2.5 * settings_.loopScale, 0.0);
-  camera.eye = camera.target + Vec3(0.55, 0.12, 0.22);
+  // Follows the knot (the rope's middle: the slack sags 0.3 m before the pull lifts it again), close
+  // enough that the tight knot, a few centimetres across, fills a good part of the frame.
+  const Rod& rod = rope_->rod();
+  camera.target = rod.position(0.5 * (rod.beginParameter() + rod.endParameter()));
+  camera.eye = camera.target + Vec3(0.2, 0.06, 0.08);
   return camera;
 }
 

@@ -57,10 +57,13 @@ void PhysicsWorld::draw(render::Scene& scene) const {
   render::extractWorld(*world_, meshes_, scene, options);
 }
 
-void drawRope(render::Scene& scene, const bullet::RopeObject& rope) {
+void drawRope(render::Scene& scene, const bullet::RopeObject& rope, bool showControlPolygon) {
   render::RopeStyle style;
   style.tube.radius = rope.rod().settings().radius;
   style.tube.alternateSpanColours = true;
+  style.showControlPolygon = showControlPolygon;
+  style.controlPolygon.lineRadius = 0.2 * style.tube.radius;
+  style.controlPolygon.pointRadius = 0.45 * style.tube.radius;
   render::addRope(scene, rope.rod().knots(), rope.rod().controlPoints(), style);
 }
 

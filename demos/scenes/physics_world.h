@@ -47,7 +47,9 @@ class PhysicsWorld {
   mutable render::ShapeMeshCache meshes_;
 };
 
-// A rope's drawing style in the Bullet scenes: the tube of the rope's radius, spans in alternating colours.
-void drawRope(render::Scene& scene, const bullet::RopeObject& rope);
+// A rope's drawing style in the Bullet scenes: the tube of the rope's radius, spans in alternating
+// colours, and optionally its control polygon as a thin overlay (as [A]'s knot-tying figure shows it,
+// so the adaptivity is visible).
+void drawRope(render::Scene& scene, const bullet::RopeObject& rope, bool showControlPolygon = false);
 
 }  // namespace rope::demos

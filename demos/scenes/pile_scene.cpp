@@ -126,9 +126,16 @@ void PileScene::draw(render::Scene& scene) const {
 }
 
 std::optional<render::Camera> PileScene::camera() const {
+  // Follows the rope's mean point down to the heap, which ends up about 15 cm across.
+  const Rod& rod = rope_->rod();
+  constexpr int kSamples = 64;
+  Vec3 mean = Vec3::Zero();
+  for (int i = 0; i <= kSamples; ++i) {
+    mean += rod.position(std::min(rod.endParameter(), rod.beginParameter() + (rod.endParameter() - rod.beginParameter()) * i / kSamples));
+  }
   render::Camera camera;
-  camera.target = Vec3(0.0, 0.12, 0.0);
-  camera.eye = camera.target + Vec3(0.45, 0.4, 0.6);
+  camera.target = mean / (kSamples + 1);
+  camera.eye = camera.target + Vec3(0.22, 0.2, 0.32);
   return camera;
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "demos/scenes/hang_scene.h"
+#include "demos/scenes/knot_scene.h"
 #include "render/video_writer.h"
 #include "support/json_value.h"
 
@@ -58,6 +59,39 @@ TEST(RunScene, StatsJsonAgreesWithTheSimulation) {
   const auto& frames = json["frames"];
   ASSERT_EQ(frames["t"].array.size(), 20u);  // 2 s at 10 fps
   EXPECT_NEAR(frames["sag_m"].array.back().number, reference.sag(), 0.01);
+}
+
+// The self-contact figures of the knot scene (the main job) agree with the simulation too.
+TEST(RunScene, KnotStatsReportSelfOverlapAndTheKnotSeries) {
+  RopesimOptions options = parseRopesimOptions({"knot", "--no-render", "--seconds", "1", "--fps", "10",
+                                                "--quiet", "--stats", scratch("knot.json").string()});
+  runScene(options);
+  const rope::test::JsonValue json = rope::test::parseJson(readFile(scratch("knot.json")));
+
+  KnotScene reference(KnotSceneSettings{});
+  double maxOverlap = 0.0, maxPenetration = 0.0, lastFrameKnotLength = 0.0;
+  int lastFrameContacts = 0;
+  const int steps = 240;
+  for (int i = 1; i <= steps; ++i) {
+    const StepMeasurements m = reference.step();
+    maxOverlap = std::max(maxOverlap, *m.maxSelfOverlap);
+    maxPenetration = std::max(maxPenetration, *m.maxPenetration);
+    if (i == 216) {  // the last frame is at t = 0.9 s (frames at 0, 0.1, ..., 0.9 s)
+      lastFrameKnotLength = reference.knot().length;
+      lastFrameContacts = reference.rope().lastStep().ropeContacts;
+    }
+  }
+  EXPECT_EQ(json["scene"].string, "knot");
+  EXPECT_DOUBLE_EQ(json["steps"].number, steps);
+  ASSERT_FALSE(json["max_self_overlap_m"].isNull());
+  EXPECT_GT(maxOverlap, 0.0);  // the knot's strands touch within the first second
+  EXPECT_NEAR(json["max_self_overlap_m"].number, maxOverlap, 1e-9 * maxOverlap);  // 10 digits in the JSON
+  EXPECT_NEAR(json["max_penetration_m"].number, maxPenetration, 1e-9 * maxPenetration);
+  EXPECT_DOUBLE_EQ(json["control_points"]["final"].number, reference.rope().rod().controlPointCount());
+  const auto& frames = json["frames"];
+  ASSERT_EQ(frames["t"].array.size(), 10u);
+  EXPECT_NEAR(frames["knot_length_m"].array.back().number, lastFrameKnotLength, 1e-9 * lastFrameKnotLength);
+  EXPECT_DOUBLE_EQ(frames["self_contacts"].array.back().number, lastFrameContacts);
 }
 
 // The acceptance check of the video: H.264, yuv420p, the requested fps and size, and exactly

@@ -1,0 +1,25 @@
+#include "bullet_bridge/kinematic_rope_settings.h"
+
+#include <string>
+
+#include "rope/common/error.h"
+
+namespace rope::bullet {
+
+void KinematicRopeSettings::validate() const {
+  requirePositive("settings.radius", radius);
+  if (capsulesPerSpan < 1 || capsulesPerSpan > 64) {
+    throw InvalidArgument("settings.capsulesPerSpan", std::to_string(capsulesPerSpan), "must be in [1, 64]");
+  }
+  requireNonNegative("settings.speculativeMargin", speculativeMargin);
+  requirePositive("settings.penetrationRecovery", penetrationRecovery);
+  if (penetrationRecovery > 1.0) {
+    throw InvalidArgument("settings.penetrationRecovery", formatValue(penetrationRecovery), "must be <= 1");
+  }
+  requireNonNegative("settings.friction", friction);
+  if (collisionGroup == 0) {
+    throw InvalidArgument("settings.collisionGroup", "0", "must have at least one bit set");
+  }
+}
+
+}  // namespace rope::bullet

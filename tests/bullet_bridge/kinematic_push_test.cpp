@@ -1,0 +1,107 @@
+// The one-way contact impulse of a kinematic rope on a body (kinematic_push.h): after it the relative
+// normal speed is exactly the target speed, it never pulls, friction stays within mu * j_n.
+#include "bullet_bridge/kinematic_push.h"
+
+#include <gtest/gtest.h>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <cmath>
+#include <memory>
+
+namespace rope::bullet {
+namespace {
+
+constexpr double kH = 1.0 / 240.0;
+
+struct Body {
+  btBoxShape shape{btVector3(btScalar(0.2), btScalar(0.1), btScalar(0.05))};
+  std::unique_ptr<btRigidBody> body;
+  explicit Body(double mass) {
+    btVector3 inertia(0, 0, 0);
+    shape.calculateLocalInertia(static_cast<btScalar>(mass), inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), nullptr, &shape, inertia);
+    info.m_startWorldTransform.setIdentity();
+    info.m_startWorldTransform.setOrigin(btVector3(1, 2, 3));
+    body = std::make_unique<btRigidBody>(info);
+  }
+};
+
+// A contact on the body's +x face, off its centre (so the impulse also spins it), rope on the +x side.
+Contact faceContact(double distance, bool offCentre = true) {
+  Contact contact;
+  contact.normal = btVector3(1, 0, 0);
+  contact.pointOnBody = offCentre ? btVector3(btScalar(1.2), btScalar(2.07), btScalar(3.03)) : btVector3(btScalar(1.2), 2, 3);
+  contact.distance = static_cast<btScalar>(distance);
+  contact.pointOnCapsule = contact.pointOnBody + contact.normal * contact.distance;
+  return contact;
+}
+
+double relativeNormalSpeed(const btRigidBody& body, const Contact& contact, const btVector3& ropeVelocity) {
+  const btVector3 arm = contact.pointOnBody - body.getCenterOfMassPosition();
+  return static_cast<double>(contact.normal.dot(ropeVelocity - body.getVelocityInLocalPoint(arm)));
+}
+
+TEST(KinematicPush, PenetratingContactLeavesAtTheRecoverySpeed) {
+  for (double mass : {1e-3, 1.0, 1e4}) {
+    Body b(mass);
+    const Contact contact = faceContact(-0.004);
+    const btVector3 ropeVelocity(-2.0, 0.3, 0.0);  // rope moving into the body at 2 m/s
+    OneWayContactLaw law;
+    law.friction = 0.0;
+    const btVector3 impulse = applyOneWayContact(*b.body, contact, ropeVelocity, kH, law);
+    // v_n after = -recovery * d / h = 0.2 * 0.004 * 240 = 0.192 m/s (separating), whatever the mass.
+    EXPECT_NEAR(relativeNormalSpeed(*b.body, contact, ropeVelocity), 0.2 * 0.004 / kH, 1e-12) << mass;
+    EXPECT_LT(impulse.x(), 0.0);  // pushed along -n, away from the rope
+    EXPECT_EQ(impulse.y(), 0.0);
+    EXPECT_EQ(impulse.z(), 0.0);
+    // Linear momentum gained is the impulse.
+    EXPECT_NEAR(b.body->getLinearVelocity().x() * mass, impulse.x(), 1e-12 * (1.0 + std::fabs(impulse.x())));
+    EXPECT_NE(b.body->getAngularVelocity().length(), 0.0);  // off-centre: it spins too
+  }
+}
+
+TEST(KinematicPush, SeparatingAndSlowSpeculativeContactsGiveNothing) {
+  Body b(2.0);
+  OneWayContactLaw law;
+  // Rope moving away from the body.
+  EXPECT_EQ(applyOneWayContact(*b.body, faceContact(-0.001), btVector3(1, 0, 0), kH, law), btVector3(0, 0, 0));
+  // 5 mm apart, closing at 1 m/s: 4.2 mm per substep, the gap does not close.
+  EXPECT_EQ(applyOneWayContact(*b.body, faceContact(0.005), btVector3(-1, 0, 0), kH, law), btVector3(0, 0, 0));
+  EXPECT_EQ(b.body->getLinearVelocity(), btVector3(0, 0, 0));
+  EXPECT_EQ(b.body->getAngularVelocity(), btVector3(0, 0, 0));
+  // Closing at 3 m/s would pass the gap: the body gets exactly enough to close it within h.
+  const Contact contact = faceContact(0.005);
+  applyOneWayContact(*b.body, contact, btVector3(-3, 0, 0), kH, law);
+  EXPECT_NEAR(relativeNormalSpeed(*b.body, contact, btVector3(-3, 0, 0)), -0.005 / kH, 1e-12);
+}
+
+TEST(KinematicPush, FrictionIsBoundedByTheNormalImpulse) {
+  Body sliding(1.0);
+  Body plain(1.0);
+  const Contact contact = faceContact(-0.002);
+  const btVector3 ropeVelocity(-0.5, 0.0, 4.0);  // fast tangential slip along z
+  OneWayContactLaw law;
+  law.friction = 0.4;
+  const btVector3 withFriction = applyOneWayContact(*sliding.body, contact, ropeVelocity, kH, law);
+  law.friction = 0.0;
+  const btVector3 normalOnly = applyOneWayContact(*plain.body, contact, ropeVelocity, kH, law);
+  const btVector3 tangential = withFriction - normalOnly;
+  EXPECT_NEAR(tangential.x(), 0.0, 1e-14);
+  EXPECT_GT(tangential.z(), 0.0);  // dragged along with the rope
+  EXPECT_NEAR(tangential.length(), 0.4 * normalOnly.length(), 1e-12);  // sliding: exactly mu j_n
+  // Slow slip at the face centre (no spin from the normal impulse): friction sticks, the relative
+  // tangential velocity at the point goes to zero, below the bound.
+  Body sticking(1.0);
+  law.friction = 0.4;
+  const Contact centre = faceContact(-0.002, false);
+  const btVector3 slow(-0.5, 0.0, 1e-3);
+  applyOneWayContact(*sticking.body, centre, slow, kH, law);
+  const btVector3 arm = centre.pointOnBody - sticking.body->getCenterOfMassPosition();
+  const btVector3 slip = slow - sticking.body->getVelocityInLocalPoint(arm);
+  EXPECT_NEAR(slip.y(), 0.0, 1e-15);
+  EXPECT_NEAR(slip.z(), 0.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace rope::bullet

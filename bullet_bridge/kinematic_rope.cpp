@@ -1,0 +1,397 @@
+#include "bullet_bridge/kinematic_rope.h"
+
+#include <BulletCollision/BroadphaseCollision/btBroadphaseInterface.h>
+#include <BulletCollision/CollisionShapes/btEmptyShape.h>
+#include <LinearMath/btIDebugDraw.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <tuple>
+
+#include "bullet_bridge/find_contacts.h"
+#include "bullet_bridge/kinematic_push.h"
+#include "rope/common/error.h"
+#include "rope/spline/bspline_curve.h"
+#include "rope/tractrix/tractrix_segment.h"
+
+namespace rope::bullet {
+
+namespace {
+
+// userIndex2 of the dynamic ropes' capsules (capsule_proxies.cpp): they are not bodies to push.
+constexpr int kDynamicRopeTag = 0x526f7065;
+// Bullet's btCollisionWorld::updateSingleAabb disables objects whose box diagonal^2 reaches 1e12.
+constexpr double kBulletAabbLimit2 = 1e12;
+
+btVector3 toBullet(const Vec3& v) {
+  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
+}
+
+Vec3 toVec(const btVector3& v) {
+  return Vec3(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z()));
+}
+
+// A finite position the tractrix accepts (no exception: used inside a substep).
+bool acceptable(const Vec3& p) {
+  for (int c = 0; c < 3; ++c) {
+    if (!std::isfinite(p[c]) || std::fabs(p[c]) > kMaxTractrixCoordinate) return false;
+  }
+  return true;
+}
+
+void requireTarget(const char* name, const btVector3& p) {
+  static const char* const kAxes[3] = {".x", ".y", ".z"};
+  for (int c = 0; c < 3; ++c) requireTractrixCoordinate(std::string(name) + kAxes[c], static_cast<double>(p[c]));
+}
+
+// The world's dynamic body behind a broadphase proxy that this rope may push, else nullptr.
+btRigidBody* pushableBody(const btBroadphaseProxy& proxy, int group, int mask, const btRigidBody* followed) {
+  auto* object = static_cast<btCollisionObject*>(proxy.m_clientObject);
+  if (object == nullptr) return nullptr;
+  if (object->getUserIndex2() == kKinematicRopeTag || object->getUserIndex2() == kDynamicRopeTag) return nullptr;
+  if (!object->hasContactResponse()) return nullptr;
+  if ((proxy.m_collisionFilterGroup & mask) == 0 || (group & proxy.m_collisionFilterMask) == 0) return nullptr;
+  btRigidBody* body = btRigidBody::upcast(object);
+  if (body == nullptr || body == followed || body->isStaticOrKinematicObject() || !(body->getInvMass() > 0)) {
+    return nullptr;
+  }
+  return body;
+}
+
+}  // namespace
+
+// Bullet calls updateAction once per internal substep, after that substep's integration.
+class KinematicRope::Action : public btActionInterface {
+ public:
+  explicit Action(KinematicRope& owner) : owner_(owner) {}
+  void updateAction(btCollisionWorld*, btScalar dt) override { owner_.substep(static_cast<double>(dt)); }
+  // Bullet calls this from debugDrawWorld() (wireframe or AABB mode): the rope's centre line.
+  void debugDraw(btIDebugDraw* drawer) override {
+    if (drawer == nullptr) return;
+    const btVector3 colour(btScalar(0.9), btScalar(0.5), btScalar(0.1));
+    for (std::size_t i = 0; i + 1 < owner_.axis_.size(); ++i) drawer->drawLine(owner_.axis_[i], owner_.axis_[i + 1], colour);
+  }
+
+ private:
+  KinematicRope& owner_;
+};
+
+// An axis-aligned box around the object's origin whose shape type stays EMPTY_SHAPE_PROXYTYPE: Bullet's
+// collision configurations create no contact algorithm for it and its own ray and contact tests
+// ignore it (the same device as capsule_proxies.cpp's swept boxes).
+class KinematicRope::BoxShape : public btEmptyShape {
+ public:
+  void setHalfExtents(const btVector3& half) { half_ = half; }
+  void getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const override {
+    aabbMin = t.getOrigin() - half_;
+    aabbMax = t.getOrigin() + half_;
+  }
+
+ private:
+  btVector3 half_{0, 0, 0};
+};
+
+KinematicRope::KinematicRope(TractrixRope rope, const KinematicRopeSettings& settings)
+    : rope_([&] {
+        settings.validate();
+        return std::move(rope);
+      }()),
+      settings_(settings),
+      action_(std::make_unique<Action>(*this)),
+      target_(rope_.leadingEnd()),
+      previousKnots_(rope_.knots()),
+      previousPoints_(rope_.controlPoints()) {
+  rebuildCapsules(false);
+}
+
+KinematicRope::~KinematicRope() { removeFromWorld(); }
+
+void KinematicRope::addToWorld(btDiscreteDynamicsWorld& world) {
+  if (world_ != nullptr) {
+    throw InvalidArgument("world", world_ == &world ? "this world" : "another world",
+                          "the rope is already in a world; removeFromWorld() first");
+  }
+  world_ = &world;
+  time_ = 0.0;
+  report_ = KinematicRopeStepReport{};
+  for (auto& object : objects_) world.addCollisionObject(object.get(), settings_.collisionGroup, settings_.collisionMask);
+  world.addAction(action_.get());
+}
+
+void KinematicRope::removeFromWorld() {
+  if (world_ == nullptr) return;
+  world_->removeAction(action_.get());
+  for (auto& object : objects_) world_->removeCollisionObject(object.get());
+  world_ = nullptr;
+  report_.contacts.clear();  // their body pointers may outlive nothing else
+}
+
+void KinematicRope::followBodyPoint(btRigidBody* body, const btVector3& localPoint) {
+  if (body == nullptr) throw InvalidArgument("body", "nullptr", "must be a rigid body");
+  static const char* const kAxes[3] = {"localPoint.x", "localPoint.y", "localPoint.z"};
+  for (int c = 0; c < 3; ++c) requireFinite(kAxes[c], static_cast<double>(localPoint[c]));
+  driver_ = Driver::kBody;
+  body_ = body;
+  localPoint_ = localPoint;
+  path_ = nullptr;
+}
+
+void KinematicRope::setTarget(const btVector3& target) {
+  requireTarget("target", target);
+  driver_ = Driver::kTarget;
+  target_ = toVec(target);
+  body_ = nullptr;
+  path_ = nullptr;
+}
+
+void KinematicRope::followPath(std::function<btVector3(double)> path) {
+  if (!path) throw InvalidArgument("path", "empty std::function", "must be callable");
+  driver_ = Driver::kPath;
+  path_ = std::move(path);
+  body_ = nullptr;
+}
+
+void KinematicRope::hold() {
+  driver_ = Driver::kHold;
+  body_ = nullptr;
+  path_ = nullptr;
+}
+
+btVector3 KinematicRope::leadingEnd() const { return toBullet(rope_.leadingEnd()); }
+
+Capsule KinematicRope::capsule(int i) const {
+  if (i < 0 || i >= capsuleCount()) {
+    throw InvalidArgument("i", std::to_string(i), "must be in [0, " + std::to_string(capsuleCount()) + ")");
+  }
+  Capsule capsule;
+  capsule.a = axis_[static_cast<std::size_t>(i)];
+  capsule.b = axis_[static_cast<std::size_t>(i) + 1];
+  capsule.radius = static_cast<btScalar>(settings_.radius);
+  return capsule;
+}
+
+const btCollisionObject& KinematicRope::capsuleObject(int i) const {
+  if (i < 0 || i >= capsuleCount()) {
+    throw InvalidArgument("i", std::to_string(i), "must be in [0, " + std::to_string(capsuleCount()) + ")");
+  }
+  return *objects_[static_cast<std::size_t>(i)];
+}
+
+KinematicRope* KinematicRope::ropeOf(const btCollisionObject& object) {
+  if (object.getUserIndex2() != kKinematicRopeTag) return nullptr;
+  return static_cast<KinematicRope*>(object.getUserPointer());
+}
+
+bool KinematicRope::driverTarget(Vec3& target) {
+  switch (driver_) {
+    case Driver::kHold:
+      return false;
+    case Driver::kTarget:
+      target = target_;
+      return true;
+    case Driver::kBody:
+      if (body_->getBroadphaseHandle() == nullptr) {
+        report_.targetFailure = "the followed body is not in a world";
+        return false;
+      }
+      target = toVec(body_->getCenterOfMassTransform() * localPoint_);
+      break;
+    case Driver::kPath:
+      target = toVec(path_(time_));
+      break;
+  }
+  if (!acceptable(target)) {
+    report_.targetFailure = driver_ == Driver::kBody ? "the followed body's point is not finite"
+                                                     : "the path returned a non-finite or too distant point";
+    return false;
+  }
+  return true;
+}
+
+void KinematicRope::substep(double h) {
+  time_ += h;
+  report_.substep += 1;
+  report_.time = time_;
+  report_.timeStep = h;
+  report_.targetFailure = nullptr;
+  report_.unsupportedBodies = 0;
+  report_.maxPenetration = 0.0;
+  report_.totalImpulse.setZero();
+  report_.contacts.clear();
+
+  // The curve before the move (copies into the existing capacity once the counts have settled).
+  previousKnots_ = rope_.knots();
+  previousPoints_ = rope_.controlPoints();
+  Vec3 target;
+  if (driverTarget(target) && target != rope_.leadingEnd()) rope_.moveLeadingEnd(target);
+
+  rebuildCapsules(true);
+  if (world_ == nullptr) return;
+  findCandidates();
+  push(h);
+}
+
+void KinematicRope::rebuildCapsules(bool swept) {
+  // Capsule ends: every non-empty span in capsulesPerSpan equal parameter pieces (one for polylines).
+  const KnotVector& knots = rope_.knots();
+  const int pieces = rope_.degree() == 1 ? 1 : settings_.capsulesPerSpan;
+  const double begin = knots.validBegin();
+  const double end = knots.validEnd();
+  ends_.clear();
+  ends_.push_back(begin);
+  double previous = begin;
+  for (int i = 0; i < knots.size(); ++i) {
+    const double knot = knots[i];
+    if (!(knot > previous) || knot > end) continue;
+    for (int j = 1; j <= pieces; ++j) ends_.push_back(j == pieces ? knot : previous + (knot - previous) * j / pieces);
+    previous = knot;
+  }
+  const std::size_t count = ends_.size() - 1;
+
+  const PointList& points = rope_.controlPoints();
+  axis_.resize(ends_.size());
+  previousAxis_.resize(ends_.size());
+  bulge_.resize(count);
+  const double previousBegin = previousKnots_.validBegin();
+  const double previousEnd = previousKnots_.validEnd();
+  for (std::size_t i = 0; i < ends_.size(); ++i) {
+    axis_[i] = toBullet(curvePosition(knots, points, ends_[i]));
+    const double s = std::clamp(ends_[i], previousBegin, previousEnd);
+    previousAxis_[i] = swept ? toBullet(curvePosition(previousKnots_, previousPoints_, s)) : axis_[i];
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const btVector3 middle = toBullet(curvePosition(knots, points, 0.5 * (ends_[i] + ends_[i + 1])));
+    bulge_[i] = (middle - (axis_[i] + axis_[i + 1]) * btScalar(0.5)).length();
+  }
+
+  // Objects follow the count (adaptivity adds and removes spans).
+  while (objects_.size() > count) {
+    if (world_ != nullptr) world_->removeCollisionObject(objects_.back().get());
+    objects_.pop_back();
+    shapes_.pop_back();
+  }
+  while (objects_.size() < count) {
+    shapes_.push_back(std::make_unique<BoxShape>());
+    auto object = std::make_unique<btCollisionObject>();
+    object->setCollisionShape(shapes_.back().get());
+    object->setCollisionFlags(object->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |
+                              btCollisionObject::CF_NO_CONTACT_RESPONSE);
+    object->setUserPointer(this);
+    object->setUserIndex(static_cast<int>(objects_.size()));
+    object->setUserIndex2(kKinematicRopeTag);
+    object->getWorldTransform().setIdentity();
+    objects_.push_back(std::move(object));
+    // Its box is set below before the world sees it.
+  }
+
+  // Each box covers the capsule before and after this substep's move, padded by the radius, the
+  // speculative margin and the curve's bulge over the chord.
+  report_.oversizedBoxes = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    btVector3 lo = axis_[i], hi = axis_[i];
+    for (const btVector3* p : {&axis_[i + 1], &previousAxis_[i], &previousAxis_[i + 1]}) {
+      lo.setMin(*p);
+      hi.setMax(*p);
+    }
+    const btScalar pad = static_cast<btScalar>(settings_.radius + settings_.speculativeMargin) + bulge_[i];
+    lo -= btVector3(pad, pad, pad);
+    hi += btVector3(pad, pad, pad);
+    const btVector3 diagonal = hi - lo;
+    const double diagonal2 = static_cast<double>(diagonal.length2());
+    btCollisionObject& object = *objects_[i];
+    const bool fresh = object.getBroadphaseHandle() == nullptr;
+    if (!std::isfinite(diagonal2) || diagonal2 >= kBulletAabbLimit2) {
+      ++report_.oversizedBoxes;
+      if (!fresh) continue;  // keep the previous box: Bullet would take the object out of the simulation
+      lo = hi = axis_[i];    // a new object gets at least its own end point
+    }
+    shapes_[i]->setHalfExtents((hi - lo) * btScalar(0.5));
+    object.getWorldTransform().setOrigin((lo + hi) * btScalar(0.5));
+    if (world_ == nullptr) continue;
+    if (fresh) {
+      world_->addCollisionObject(&object, settings_.collisionGroup, settings_.collisionMask);
+    } else {
+      world_->updateSingleAabb(&object);
+    }
+  }
+}
+
+void KinematicRope::findCandidates() {
+  // Bodies overlapping each capsule (padded by the speculative margin), straight from the broadphase's
+  // current boxes: exact for this substep whatever the driver did, unlike the pair cache, which was
+  // computed before the move.
+  struct Collector : btBroadphaseAabbCallback {
+    KinematicRope* rope = nullptr;
+    int capsule = 0;
+    bool process(const btBroadphaseProxy* proxy) override {
+      if (btRigidBody* body = pushableBody(*proxy, rope->settings_.collisionGroup, rope->settings_.collisionMask,
+                                           rope->body_)) {
+        rope->candidates_.push_back(Candidate{body->getWorldArrayIndex(), capsule, body});
+      }
+      return true;
+    }
+  } collector;
+  collector.rope = this;
+  candidates_.clear();
+  btBroadphaseInterface* broadphase = world_->getBroadphase();
+  const btScalar pad = static_cast<btScalar>(settings_.radius + settings_.speculativeMargin);
+  for (int i = 0; i < capsuleCount(); ++i) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    btVector3 lo = axis_[k], hi = axis_[k];
+    lo.setMin(axis_[k + 1]);
+    hi.setMax(axis_[k + 1]);
+    const btVector3 padding(pad + bulge_[k], pad + bulge_[k], pad + bulge_[k]);
+    collector.capsule = i;
+    broadphase->aabbTest(lo - padding, hi + padding, collector);
+  }
+  // A fixed order (broadphase order depends on its tree and on pointers): by body, then along the rope.
+  std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
+    return std::tie(a.worldIndex, a.capsule) < std::tie(b.worldIndex, b.capsule);
+  });
+  candidates_.erase(std::unique(candidates_.begin(), candidates_.end(),
+                                [](const Candidate& a, const Candidate& b) {
+                                  return a.worldIndex == b.worldIndex && a.capsule == b.capsule;
+                                }),
+                    candidates_.end());
+}
+
+void KinematicRope::push(double h) {
+  OneWayContactLaw law;
+  law.penetrationRecovery = settings_.penetrationRecovery;
+  law.friction = settings_.friction;
+  const btRigidBody* skipped = nullptr;  // a body with an unsupported shape, skipped once per substep
+  for (const Candidate& candidate : candidates_) {
+    if (candidate.body == skipped) continue;
+    const Capsule capsule = this->capsule(candidate.capsule);
+    scratch_.clear();
+    try {
+      findContacts(capsule, *candidate.body, settings_.speculativeMargin, scratch_);
+    } catch (const InvalidArgument&) {
+      // Shapes the narrowphase does not handle; nothing may throw out of Bullet's step.
+      ++report_.unsupportedBodies;
+      skipped = candidate.body;
+      continue;
+    }
+    const std::size_t k = static_cast<std::size_t>(candidate.capsule);
+    const btVector3 velocityA = (axis_[k] - previousAxis_[k]) / static_cast<btScalar>(h);
+    const btVector3 velocityB = (axis_[k + 1] - previousAxis_[k + 1]) / static_cast<btScalar>(h);
+    for (const Contact& contact : scratch_) {
+      // The rope's velocity at the contact over this substep, linear along the capsule.
+      const btVector3 ropeVelocity = velocityA + (velocityB - velocityA) * contact.t;
+      KinematicContactRecord record;
+      record.body = candidate.body;
+      record.capsule = candidate.capsule;
+      record.s = ends_[k] + static_cast<double>(contact.t) * (ends_[k + 1] - ends_[k]);
+      record.point = contact.pointOnBody;
+      record.normal = contact.normal;
+      record.depth = -static_cast<double>(contact.distance);
+      report_.maxPenetration = std::max(report_.maxPenetration, record.depth);
+      record.impulse = applyOneWayContact(*candidate.body, contact, ropeVelocity, h, law);
+      report_.totalImpulse += record.impulse;
+      report_.contacts.push_back(record);
+    }
+  }
+}
+
+}  // namespace rope::bullet

@@ -1,0 +1,163 @@
+#pragma once
+// A kinematic tractrix rope in a Bullet world ([B]'s "follow the leader": cables dragged by robots,
+// hoses, tails): a rope::TractrixRope whose leading end follows a rigid body's point, a fixed target
+// or a scripted path, stepped once per Bullet internal substep by its own btActionInterface.
+//
+//   rope::bullet::KinematicRope hose(rope::TractrixRope(shape, tractrixSettings));
+//   hose.addToWorld(dynamicsWorld);                         // any btDiscreteDynamicsWorld
+//   hose.followBodyPoint(gripper, btVector3(0, 0, -0.05));  // or setTarget(p) / followPath(f)
+//   dynamicsWorld.stepSimulation(1.0 / 60, 4, 1.0 / 240);  // the rope moves inside each substep
+//   hose.removeFromWorld();                                 // also done by the destructor
+//
+// Its collision geometry is a chain of capsules over its spline (capsulesPerSpan per knot span),
+// registered in Bullet's broadphase as objects with a swept box (the capsule at the start and the end
+// of the substep, padded) and a shape for which Bullet runs no narrowphase; they carry
+// CF_NO_CONTACT_RESPONSE, so neither Bullet's solver nor the dynamic ropes' RopeWorld react to them
+// (their userIndex2 is kKinematicRopeTag, not the dynamic ropes' tag). After moving, the rope finds
+// the dynamic bodies overlapping its capsules through the broadphase, measures contacts with the
+// bridge's narrowphase (find_contacts.h) and pushes each body by a one-way impulse
+// (kinematic_push.h). Nothing acts on the rope: static and kinematic objects, the body it follows,
+// and other ropes (dynamic or kinematic) are passed through.
+//
+// Bullet's debugDrawWorld() draws the rope's centre line (the capsule axes) through btIDebugDraw.
+//
+// Timing: Bullet runs actions after a substep's integration; the rope moves to the driver's position
+// for the end of that substep, and the impulses set the bodies' velocities for the next one.
+
+#include <BulletDynamics/Dynamics/btActionInterface.h>
+#include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "bullet_bridge/bullet_precision.h"
+#include "bullet_bridge/capsule.h"
+#include "bullet_bridge/contact.h"
+#include "bullet_bridge/kinematic_rope_settings.h"
+#include "rope/tractrix/tractrix_rope.h"
+
+namespace rope::bullet {
+
+// userIndex2 of every kinematic rope capsule ("KRop"); userPointer is the KinematicRope, userIndex
+// the capsule index.
+constexpr int kKinematicRopeTag = 0x4b526f70;
+
+// One push of the last substep.
+struct KinematicContactRecord {
+  const btCollisionObject* body = nullptr;
+  int capsule = 0;                 // capsule index along the rope (0 at the leading end)
+  double s = 0.0;                  // curve parameter of the contact on the rope
+  btVector3 point{0, 0, 0};        // on the body surface, world frame, m
+  btVector3 normal{0, 0, 1};       // unit, from the body into the rope
+  double depth = 0.0;              // m, > 0 penetrating, < 0 speculative gap
+  btVector3 impulse{0, 0, 0};      // given to the body, N s (zero if it already moved away fast enough)
+};
+
+struct KinematicRopeStepReport {
+  long substep = 0;         // substeps taken since addToWorld
+  double time = 0.0;        // s, simulated time since addToWorld (what followPath's function gets)
+  double timeStep = 0.0;    // s, the last substep
+  // Why the leading end did not move to the driver's position this substep: nullptr if it did (or
+  // holds still by choice). A target that is not finite or beyond kMaxTractrixCoordinate, a followed
+  // body that left the world: the rope then holds where it is (an exception cannot leave a substep).
+  const char* targetFailure = nullptr;
+  // Bodies whose shape the narrowphase does not support (find_contacts.h); they are passed through.
+  int unsupportedBodies = 0;
+  // Capsule boxes Bullet would drop as too large (diagonal^2 >= 1e12 m^2); the previous box is kept.
+  int oversizedBoxes = 0;
+  double maxPenetration = 0.0;        // m, deepest body penetration found this substep (before the push)
+  btVector3 totalImpulse{0, 0, 0};    // N s, sum of all impulses given this substep
+  std::vector<KinematicContactRecord> contacts;
+};
+
+class KinematicRope {
+ public:
+  // Throws InvalidArgument naming the settings field (settings.validate()). The leading end holds
+  // still until a driver is set.
+  explicit KinematicRope(TractrixRope rope, const KinematicRopeSettings& settings = {});
+  ~KinematicRope();  // leaves its world first (so destroy it, or removeFromWorld, before the world)
+  KinematicRope(const KinematicRope&) = delete;
+  KinematicRope& operator=(const KinematicRope&) = delete;
+
+  // Registers the action and the capsules ("world": already in a world). removeFromWorld undoes it
+  // (no-op when not in a world); the rope keeps its state and may be added again.
+  void addToWorld(btDiscreteDynamicsWorld& world);
+  void removeFromWorld();
+  btDiscreteDynamicsWorld* world() const { return world_; }
+
+  // Drivers; each replaces the previous one and takes effect at the next substep (the leading end
+  // moves there in a straight line, as TractrixRope::moveLeadingEnd). All throw InvalidArgument and
+  // leave the rope and its driver unchanged on bad input.
+  // The body's point localPoint (centre-of-mass frame, m), read after each substep's integration.
+  // The body itself is never pushed by this rope. "body" for nullptr, "localPoint.x|y|z" if not finite.
+  // Remove the driver (hold()) or the rope before the body is destroyed.
+  void followBodyPoint(btRigidBody* body, const btVector3& localPoint);
+  // A fixed world point ("target.x|y|z": not finite or beyond kMaxTractrixCoordinate). The rope gets
+  // there within one substep, so a distant target is a fast sweep (and bodies it hits get that
+  // speed); move it in small steps, or use followPath, for a smooth motion.
+  void setTarget(const btVector3& target);
+  // position(t) for the simulated time t since addToWorld (s), evaluated at the end of each substep.
+  // "path" for an empty function. A non-finite position makes the rope hold (report.targetFailure).
+  void followPath(std::function<btVector3(double)> path);
+  // The leading end stays where it is.
+  void hold();
+  const btRigidBody* followedBody() const { return body_; }
+
+  const TractrixRope& tractrix() const { return rope_; }
+  const KinematicRopeSettings& settings() const { return settings_; }
+  const KinematicRopeStepReport& lastStep() const { return report_; }
+  btVector3 leadingEnd() const;
+
+  // Capsules at the last substep (or at addToWorld), leading end first.
+  int capsuleCount() const { return static_cast<int>(objects_.size()); }
+  Capsule capsule(int i) const;                              // "i" out of range
+  const btCollisionObject& capsuleObject(int i) const;       // "i" out of range
+  // The kinematic rope a collision object stands in for, or nullptr.
+  static KinematicRope* ropeOf(const btCollisionObject& object);
+
+ private:
+  class Action;
+  class BoxShape;
+  struct Candidate {
+    int worldIndex;
+    int capsule;
+    btRigidBody* body;
+  };
+
+  void substep(double h);
+  bool driverTarget(Vec3& target);       // false: hold (report_.targetFailure says why, if it failed)
+  void rebuildCapsules(bool swept);      // parameters, axis points and boxes from the current curve
+  void findCandidates();
+  void push(double h);
+
+  TractrixRope rope_;
+  KinematicRopeSettings settings_;
+  std::unique_ptr<Action> action_;
+  btDiscreteDynamicsWorld* world_ = nullptr;
+
+  enum class Driver { kHold, kTarget, kBody, kPath };
+  Driver driver_ = Driver::kHold;
+  Vec3 target_ = Vec3::Zero();
+  btRigidBody* body_ = nullptr;
+  btVector3 localPoint_{0, 0, 0};
+  std::function<btVector3(double)> path_;
+  double time_ = 0.0;
+
+  // The curve before this substep's move, to measure how far each capsule end moved.
+  KnotVector previousKnots_;
+  PointList previousPoints_;
+
+  std::vector<double> ends_;              // capsule end parameters, capsuleCount() + 1
+  std::vector<btVector3> axis_;           // capsule end points now
+  std::vector<btVector3> previousAxis_;   // the same parameters on the previous curve
+  std::vector<btScalar> bulge_;           // per capsule: the curve's distance from its chord midpoint
+  std::vector<std::unique_ptr<BoxShape>> shapes_;
+  std::vector<std::unique_ptr<btCollisionObject>> objects_;
+  std::vector<Candidate> candidates_;
+  std::vector<Contact> scratch_;
+  KinematicRopeStepReport report_;
+};
+
+}  // namespace rope::bullet

@@ -1,0 +1,486 @@
+// KinematicRope in a Bullet world: the leading end tracks a body point or a scripted path exactly,
+// capsules follow the adaptive spline in the broadphase, dynamic bodies in the sweep are pushed out
+// one-way (the rope moves exactly as without them), static bodies are passed through, bad input is
+// rejected without changing anything, twin runs are bitwise identical.
+#include "bullet_bridge/kinematic_rope.h"
+
+#include <gtest/gtest.h>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "bullet_bridge/find_contacts.h"
+#include "bullet_bridge/rope_world.h"
+#include "rope/common/error.h"
+
+namespace rope::bullet {
+namespace {
+
+constexpr double kStep = 1.0 / 240.0;
+
+struct World {
+  btDefaultCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher{&configuration};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;
+
+  explicit World(double gravity = 0.0) { world.setGravity(btVector3(0, static_cast<btScalar>(-gravity), 0)); }
+  ~World() {
+    for (auto& body : bodies) world.removeRigidBody(body.get());
+  }
+  btRigidBody* box(const btVector3& half, const btVector3& at, double mass) {
+    shapes.push_back(std::make_unique<btBoxShape>(half));
+    btVector3 inertia(0, 0, 0);
+    if (mass > 0) shapes.back()->calculateLocalInertia(static_cast<btScalar>(mass), inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), nullptr, shapes.back().get(), inertia);
+    info.m_startWorldTransform.setIdentity();
+    info.m_startWorldTransform.setOrigin(at);
+    bodies.push_back(std::make_unique<btRigidBody>(info));
+    bodies.back()->setActivationState(DISABLE_DEACTIVATION);
+    world.addRigidBody(bodies.back().get());
+    return bodies.back().get();
+  }
+  void step(int substeps) {
+    for (int i = 0; i < substeps; ++i) world.stepSimulation(static_cast<btScalar>(kStep), 1, static_cast<btScalar>(kStep));
+  }
+};
+
+// 1 m of rope from the origin along -z, leading end first.
+TractrixRope straightRope(TractrixVariant variant = TractrixVariant::kSplineSubdivideMerge, int segments = 6) {
+  TractrixSettings settings;
+  settings.variant = variant;
+  settings.segmentCount = segments;
+  return TractrixRope(PointList{Vec3(0, 0, 0), Vec3(0, 0, -1)}, settings);
+}
+
+bool bitwiseEqual(const PointList& a, const PointList& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0);
+}
+
+bool bitwiseEqual(const btVector3& a, const btVector3& b) {
+  return std::memcmp(&a.x(), &b.x(), sizeof(btScalar)) == 0 && std::memcmp(&a.y(), &b.y(), sizeof(btScalar)) == 0 &&
+         std::memcmp(&a.z(), &b.z(), sizeof(btScalar)) == 0;
+}
+
+bool bitwiseEqual(const btTransform& a, const btTransform& b) {
+  return bitwiseEqual(a.getOrigin(), b.getOrigin()) && bitwiseEqual(a.getBasis()[0], b.getBasis()[0]) &&
+         bitwiseEqual(a.getBasis()[1], b.getBasis()[1]) && bitwiseEqual(a.getBasis()[2], b.getBasis()[2]);
+}
+
+// The sideways sweep: the leading end moves along +x at 0.6 m/s for 1 s, then stops; the rope, laid
+// along -z, swings round behind it and its leading part sweeps through the box's place.
+// Between 0.67 s and 1 s the rope's part about 0.35 m behind the leading end crosses this place
+// moving at roughly 0.3 m/s in +x.
+const btVector3 kBoxStart(btScalar(0.24), 0, btScalar(-0.08));
+btVector3 sweepPath(double t) { return btVector3(static_cast<btScalar>(0.6 * std::min(t, 1.0)), 0, 0); }
+
+// Deepest penetration of `object` into any capsule of the rope (0 if none).
+double deepestOverlap(const KinematicRope& rope, const btCollisionObject& object) {
+  double deepest = 0.0;
+  std::vector<Contact> contacts;
+  for (int i = 0; i < rope.capsuleCount(); ++i) {
+    contacts.clear();
+    findContacts(rope.capsule(i), object, 0.0, contacts);
+    for (const Contact& c : contacts) deepest = std::max(deepest, -static_cast<double>(c.distance));
+  }
+  return deepest;
+}
+
+struct SweepRun {
+  PointList ropePoints;
+  btTransform boxTransform;
+  btVector3 boxVelocity{0, 0, 0};
+  btVector3 boxAngular{0, 0, 0};
+  btVector3 impulseSum{0, 0, 0};
+  int contactSubsteps = 0;
+  double maxPenetration = 0.0;
+  double maxOverlap = 0.0;  // deepest overlap of the box with the capsules after any substep
+  double finalOverlap = 0.0;
+};
+
+SweepRun runSweep(bool withBox, bool staticBox) {
+  World w;
+  btRigidBody* box = nullptr;
+  const btVector3 boxHalf(btScalar(0.03), btScalar(0.03), btScalar(0.03));
+  const btVector3 boxAt = kBoxStart;
+  if (withBox) box = w.box(boxHalf, boxAt, staticBox ? 0.0 : 0.5);
+  KinematicRope rope(straightRope());
+  rope.addToWorld(w.world);
+  rope.followPath(sweepPath);
+  SweepRun run;
+  for (int i = 0; i < 360; ++i) {  // 1.5 s
+    w.step(1);
+    const KinematicRopeStepReport& report = rope.lastStep();
+    if (!report.contacts.empty()) ++run.contactSubsteps;
+    run.maxPenetration = std::max(run.maxPenetration, report.maxPenetration);
+    run.impulseSum += report.totalImpulse;
+    for (const KinematicContactRecord& record : report.contacts) EXPECT_EQ(record.body, box);
+    if (box != nullptr) run.maxOverlap = std::max(run.maxOverlap, deepestOverlap(rope, *box));
+  }
+  run.ropePoints = rope.tractrix().controlPoints();
+  if (box != nullptr) {
+    run.boxTransform = box->getWorldTransform();
+    run.boxVelocity = box->getLinearVelocity();
+    run.boxAngular = box->getAngularVelocity();
+    run.finalOverlap = deepestOverlap(rope, *box);
+  }
+  return run;
+}
+
+TEST(KinematicRope, LeadingEndTracksABodyPointEverySubstep) {
+  World w;
+  btRigidBody* body = w.box(btVector3(btScalar(0.1), btScalar(0.05), btScalar(0.05)), btVector3(0, 0, 0), 2.0);
+  body->setLinearVelocity(btVector3(btScalar(0.7), btScalar(0.2), btScalar(-0.1)));
+  body->setAngularVelocity(btVector3(btScalar(0.5), btScalar(2.0), btScalar(-1.0)));
+  // The twin body without a rope: the followed body must not feel the rope at all.
+  World alone;
+  btRigidBody* twin = alone.box(btVector3(btScalar(0.1), btScalar(0.05), btScalar(0.05)), btVector3(0, 0, 0), 2.0);
+  twin->setLinearVelocity(body->getLinearVelocity());
+  twin->setAngularVelocity(body->getAngularVelocity());
+
+  const btVector3 local(btScalar(0.1), btScalar(0.02), btScalar(-0.03));
+  KinematicRope rope(straightRope());
+  rope.addToWorld(w.world);
+  rope.followBodyPoint(body, local);
+  EXPECT_EQ(rope.followedBody(), body);
+  double worst = 0.0;
+  int checks = 0;
+  struct Probe {
+    KinematicRope* rope;
+    btRigidBody* body;
+    btVector3 local;
+    double* worst;
+    int* checks;
+  } probe{&rope, body, local, &worst, &checks};
+  // After every internal substep (Bullet calls the tick callback after the actions).
+  w.world.setInternalTickCallback(
+      [](btDynamicsWorld* world, btScalar) {
+        auto* p = static_cast<Probe*>(world->getWorldUserInfo());
+        const btVector3 point = p->body->getCenterOfMassTransform() * p->local;
+        *p->worst = std::max(*p->worst, static_cast<double>((p->rope->leadingEnd() - point).length()));
+        *p->checks += 1;
+      },
+      &probe);
+  for (int frame = 0; frame < 60; ++frame) {
+    w.world.stepSimulation(btScalar(1.0 / 60.0), 4, static_cast<btScalar>(kStep));
+    alone.world.stepSimulation(btScalar(1.0 / 60.0), 4, static_cast<btScalar>(kStep));
+    ASSERT_TRUE(bitwiseEqual(body->getWorldTransform(), twin->getWorldTransform())) << "frame " << frame;
+    EXPECT_EQ(rope.lastStep().targetFailure, nullptr);
+  }
+  EXPECT_GE(checks, 236);  // 4 substeps per frame, give or take Bullet's time accumulator
+  EXPECT_LE(worst, 1e-9);
+  RecordProperty("worst_leading_end_error_m", formatValue(worst));
+  // The rope did follow: its leading end moved about 0.7 m.
+  EXPECT_GT(static_cast<double>(rope.leadingEnd().length()), 0.5);
+}
+
+TEST(KinematicRope, ScriptedPathIsFollowedAtTheSimulatedTime) {
+  World w;
+  KinematicRope rope(straightRope());
+  rope.addToWorld(w.world);
+  auto circle = [](double t) {
+    return btVector3(static_cast<btScalar>(0.3 * std::sin(2.0 * t)), 0, static_cast<btScalar>(0.3 - 0.3 * std::cos(2.0 * t)));
+  };
+  rope.followPath(circle);
+  for (int i = 1; i <= 240; ++i) {
+    w.step(1);
+    ASSERT_NEAR(rope.lastStep().time, i * kStep, 1e-12);
+    ASSERT_TRUE(bitwiseEqual(rope.leadingEnd(), circle(rope.lastStep().time))) << "substep " << i;
+  }
+  // A path that turns non-finite: the rope holds where it was and says why; nothing throws.
+  const Vec3 before = rope.tractrix().leadingEnd();
+  rope.followPath([](double) { return btVector3(std::nan(""), 0, 0); });
+  EXPECT_NO_THROW(w.step(5));
+  EXPECT_NE(rope.lastStep().targetFailure, nullptr);
+  EXPECT_EQ(rope.tractrix().leadingEnd(), before);
+  // A fixed target is reached in one substep, then held.
+  rope.setTarget(btVector3(btScalar(0.5), btScalar(0.1), 0));
+  w.step(3);
+  EXPECT_EQ(rope.leadingEnd(), btVector3(btScalar(0.5), btScalar(0.1), 0));
+  EXPECT_EQ(rope.lastStep().targetFailure, nullptr);
+  rope.hold();
+  const PointList held = rope.tractrix().controlPoints();
+  w.step(3);
+  EXPECT_TRUE(bitwiseEqual(rope.tractrix().controlPoints(), held));
+}
+
+TEST(KinematicRope, CapsulesFollowTheAdaptiveSplineInTheBroadphase) {
+  World w;
+  const int bodiesBefore = w.world.getNumCollisionObjects();
+  KinematicRope rope(straightRope());
+  rope.addToWorld(w.world);
+  // A tight turning path makes TRX_SD_MRG subdivide and merge, so the capsule count changes.
+  rope.followPath([](double t) {
+    return btVector3(static_cast<btScalar>(0.4 * std::sin(3.0 * t)), 0, static_cast<btScalar>(0.4 * (1.0 - std::cos(3.0 * t))));
+  });
+  int minCount = rope.capsuleCount(), maxCount = rope.capsuleCount();
+  for (int i = 0; i < 480; ++i) {
+    w.step(1);
+    const int count = rope.capsuleCount();
+    minCount = std::min(minCount, count);
+    maxCount = std::max(maxCount, count);
+    ASSERT_EQ(w.world.getNumCollisionObjects(), bodiesBefore + count) << "substep " << i;
+    ASSERT_EQ(count, 4 * (rope.tractrix().controlPointCount() - 3));  // 4 per span, cubic
+    // Each capsule is in the broadphase with a box that contains it, and the capsules join up.
+    for (int c = 0; c < count; ++c) {
+      const btCollisionObject& object = rope.capsuleObject(c);
+      ASSERT_NE(object.getBroadphaseHandle(), nullptr);
+      ASSERT_EQ(KinematicRope::ropeOf(object), &rope);
+      ASSERT_EQ(object.getUserIndex(), c);
+      ASSERT_TRUE(object.hasContactResponse() == false);
+      const Capsule capsule = rope.capsule(c);
+      const btVector3& lo = object.getBroadphaseHandle()->m_aabbMin;
+      const btVector3& hi = object.getBroadphaseHandle()->m_aabbMax;
+      for (const btVector3& p : {capsule.a, capsule.b}) {
+        for (int k = 0; k < 3; ++k) {
+          ASSERT_LE(lo[k], p[k] - capsule.radius);
+          ASSERT_GE(hi[k], p[k] + capsule.radius);
+        }
+      }
+      if (c > 0) {
+        ASSERT_TRUE(bitwiseEqual(rope.capsule(c - 1).b, capsule.a));
+      }
+    }
+    ASSERT_TRUE(bitwiseEqual(rope.capsule(0).a, rope.leadingEnd()));
+  }
+  EXPECT_GT(maxCount, minCount);
+  RecordProperty("capsules_min", minCount);
+  RecordProperty("capsules_max", maxCount);
+
+  // The broadphase itself finds them: an AABB query around the leading end returns a capsule of this rope.
+  struct Finder : btBroadphaseAabbCallback {
+    int found = 0;
+    bool process(const btBroadphaseProxy* proxy) override {
+      if (KinematicRope::ropeOf(*static_cast<const btCollisionObject*>(proxy->m_clientObject)) != nullptr) ++found;
+      return true;
+    }
+  } finder;
+  const btVector3 tip = rope.leadingEnd();
+  const btVector3 pad(btScalar(0.001), btScalar(0.001), btScalar(0.001));
+  w.world.getBroadphase()->aabbTest(tip - pad, tip + pad, finder);
+  EXPECT_GE(finder.found, 1);
+
+  rope.removeFromWorld();
+  EXPECT_EQ(w.world.getNumCollisionObjects(), bodiesBefore);
+  EXPECT_EQ(rope.world(), nullptr);
+  const PointList after = rope.tractrix().controlPoints();
+  w.step(10);  // no longer stepped by the world
+  EXPECT_TRUE(bitwiseEqual(rope.tractrix().controlPoints(), after));
+}
+
+TEST(KinematicRope, PairCacheSeesTheCapsulesAndBulletsSolverIgnoresThem) {
+  World w;
+  // A free box resting across the rope (no gravity): Bullet pairs it with the capsules' boxes.
+  btRigidBody* box = w.box(btVector3(btScalar(0.05), btScalar(0.05), btScalar(0.05)),
+                           btVector3(btScalar(0.5), btScalar(0.5), btScalar(-0.5)), 1.0);
+  KinematicRope rope(straightRope());
+  rope.addToWorld(w.world);
+  w.step(2);
+  EXPECT_EQ(box->getLinearVelocity(), btVector3(0, 0, 0));  // far away: untouched
+  // Move the box onto the rope: the next collision detection pairs it with capsules, Bullet's solver
+  // makes no manifold for them, and the rope pushes the box out.
+  btTransform onRope = box->getWorldTransform();
+  onRope.setOrigin(btVector3(btScalar(0.0), btScalar(0.03), btScalar(-0.5)));
+  box->setWorldTransform(onRope);
+  w.step(1);
+  int pairs = 0;
+  btBroadphasePairArray& array = w.world.getPairCache()->getOverlappingPairArray();
+  for (int i = 0; i < array.size(); ++i) {
+    const auto* a = static_cast<const btCollisionObject*>(array[i].m_pProxy0->m_clientObject);
+    const auto* b = static_cast<const btCollisionObject*>(array[i].m_pProxy1->m_clientObject);
+    if ((KinematicRope::ropeOf(*a) == &rope && b == box) || (KinematicRope::ropeOf(*b) == &rope && a == box)) ++pairs;
+  }
+  EXPECT_GE(pairs, 1);
+  int manifoldPoints = 0;
+  for (int i = 0; i < w.dispatcher.getNumManifolds(); ++i) manifoldPoints += w.dispatcher.getManifoldByIndexInternal(i)->getNumContacts();
+  EXPECT_EQ(manifoldPoints, 0);
+  EXPECT_FALSE(rope.lastStep().contacts.empty());
+  EXPECT_GT(box->getLinearVelocity().y(), 0.0);  // pushed up, out of the rope
+  // Bullet's own ray test does not report the proxies (they have no narrowphase), it reports the box.
+  btCollisionWorld::AllHitsRayResultCallback rays(btVector3(0, 1, btScalar(-0.5)), btVector3(0, -1, btScalar(-0.5)));
+  w.world.rayTest(rays.m_rayFromWorld, rays.m_rayToWorld, rays);
+  for (int i = 0; i < rays.m_collisionObjects.size(); ++i) EXPECT_EQ(rays.m_collisionObjects[i], box);
+}
+
+TEST(KinematicRope, SweepPushesADynamicBoxOutOneWay) {
+  const SweepRun bare = runSweep(false, false);
+  const SweepRun pushed = runSweep(true, false);
+  // The box was hit and pushed along the sweep (+x), and the pair's impulse bookkeeping is exact:
+  // with no gravity and no other contact, the box's momentum is the sum of the rope's impulses.
+  EXPECT_GT(pushed.contactSubsteps, 5);
+  EXPECT_GT(pushed.boxVelocity.x(), 0.1);
+  EXPECT_GT(pushed.boxTransform.getOrigin().x(), kBoxStart.x() + 0.05);
+  EXPECT_NEAR(0.5 * pushed.boxVelocity.x(), pushed.impulseSum.x(), 1e-12);
+  EXPECT_NEAR(0.5 * pushed.boxVelocity.y(), pushed.impulseSum.y(), 1e-12);
+  EXPECT_NEAR(0.5 * pushed.boxVelocity.z(), pushed.impulseSum.z(), 1e-12);
+  // It ends outside every capsule, and it never sank deep while being pushed.
+  EXPECT_EQ(pushed.finalOverlap, 0.0);
+  EXPECT_LT(pushed.maxPenetration, 0.005);
+  EXPECT_LT(pushed.maxOverlap, 0.005);
+  // One-way: the rope moved exactly as without the box.
+  EXPECT_TRUE(bitwiseEqual(pushed.ropePoints, bare.ropePoints));
+  RecordProperty("box_speed_mps", formatValue(static_cast<double>(pushed.boxVelocity.length())));
+  RecordProperty("max_penetration_m", formatValue(pushed.maxPenetration));
+  RecordProperty("contact_substeps", pushed.contactSubsteps);
+  std::printf("sweep: box speed %.4f m/s (%.4f, %.4f, %.4f), contact substeps %d, max penetration %.3e m\n",
+              static_cast<double>(pushed.boxVelocity.length()), static_cast<double>(pushed.boxVelocity.x()),
+              static_cast<double>(pushed.boxVelocity.y()), static_cast<double>(pushed.boxVelocity.z()),
+              pushed.contactSubsteps, pushed.maxPenetration);
+}
+
+TEST(KinematicRope, StaticBodiesAreNeitherMovedNorDeflectTheRope) {
+  const SweepRun bare = runSweep(false, false);
+  const SweepRun through = runSweep(true, true);
+  EXPECT_EQ(through.contactSubsteps, 0);
+  EXPECT_GT(through.maxOverlap, 0.03);  // the rope did pass through the static box
+  EXPECT_TRUE(bitwiseEqual(through.ropePoints, bare.ropePoints));
+  btTransform start;
+  start.setIdentity();
+  start.setOrigin(kBoxStart);
+  EXPECT_TRUE(bitwiseEqual(through.boxTransform, start));
+  EXPECT_EQ(through.boxVelocity, btVector3(0, 0, 0));
+}
+
+TEST(KinematicRope, TwinRunsAreBitwiseIdentical) {
+  const SweepRun a = runSweep(true, false);
+  const SweepRun b = runSweep(true, false);
+  EXPECT_TRUE(bitwiseEqual(a.ropePoints, b.ropePoints));
+  EXPECT_TRUE(bitwiseEqual(a.boxTransform, b.boxTransform));
+  EXPECT_TRUE(bitwiseEqual(a.boxVelocity, b.boxVelocity));
+  EXPECT_TRUE(bitwiseEqual(a.boxAngular, b.boxAngular));
+  EXPECT_TRUE(bitwiseEqual(a.impulseSum, b.impulseSum));
+}
+
+TEST(KinematicRope, DynamicRopesIgnoreItAndItIgnoresThem) {
+  // A dynamic rope falling across the kinematic one: RopeWorld must not treat the kinematic capsules
+  // as bodies (different tag, no contact response), and the kinematic rope does not push rope capsules.
+  World w(9.81);
+  RopeWorld ropes(w.world);
+  RodSettings rod;
+  rod.radius = 0.01;
+  rod.youngsModulus = 2.0e8;
+  rod.bendingStiffness = 1.0e-3;
+  rod.restLength = 0.6;
+  rod.maxControlPoints = 32;
+  RopeObject cable(Rod::fromSegment(rod, Vec3(-0.3, 0.05, -0.5), Vec3(0.3, 0.05, -0.5)));
+  ropes.addRope(cable);
+  KinematicRope rope(straightRope());
+  rope.addToWorld(w.world);
+  rope.setTarget(btVector3(0, 0, btScalar(0.01)));
+  for (int i = 0; i < 60; ++i) {
+    w.step(1);
+    for (const RopeContactRecord& contact : ropes.lastReport().contacts) {
+      EXPECT_EQ(KinematicRope::ropeOf(*contact.body), nullptr);
+    }
+    EXPECT_TRUE(rope.lastStep().contacts.empty());
+  }
+  // The dynamic rope fell through (documented limitation: no kinematic-dynamic rope contact).
+  EXPECT_LT(cable.rod().position(0.5 * cable.rod().endParameter()).y(), -0.05);
+  ropes.removeRope(cable);
+}
+
+TEST(KinematicRope, BadInputThrowsNamingTheParameterAndChangesNothing) {
+  auto expectThrowNaming = [](const std::string& parameter, auto&& call) {
+    try {
+      call();
+      ADD_FAILURE() << "no exception for " << parameter;
+    } catch (const InvalidArgument& error) {
+      EXPECT_EQ(error.parameter(), parameter) << error.what();
+    }
+  };
+  const double nan = std::nan("");
+  // Settings.
+  auto withSettings = [&](auto change) {
+    KinematicRopeSettings settings;
+    change(settings);
+    return [settings] { KinematicRope rope(straightRope(), settings); };
+  };
+  expectThrowNaming("settings.radius", withSettings([&](KinematicRopeSettings& s) { s.radius = nan; }));
+  expectThrowNaming("settings.radius", withSettings([](KinematicRopeSettings& s) { s.radius = 0.0; }));
+  expectThrowNaming("settings.capsulesPerSpan", withSettings([](KinematicRopeSettings& s) { s.capsulesPerSpan = 0; }));
+  expectThrowNaming("settings.capsulesPerSpan", withSettings([](KinematicRopeSettings& s) { s.capsulesPerSpan = 65; }));
+  expectThrowNaming("settings.speculativeMargin",
+                    withSettings([](KinematicRopeSettings& s) { s.speculativeMargin = -1e-3; }));
+  expectThrowNaming("settings.penetrationRecovery",
+                    withSettings([](KinematicRopeSettings& s) { s.penetrationRecovery = 0.0; }));
+  expectThrowNaming("settings.penetrationRecovery",
+                    withSettings([](KinematicRopeSettings& s) { s.penetrationRecovery = 1.5; }));
+  expectThrowNaming("settings.friction", withSettings([](KinematicRopeSettings& s) { s.friction = HUGE_VAL; }));
+  expectThrowNaming("settings.collisionGroup", withSettings([](KinematicRopeSettings& s) { s.collisionGroup = 0; }));
+
+  World w;
+  btRigidBody* body = w.box(btVector3(btScalar(0.1), btScalar(0.1), btScalar(0.1)), btVector3(2, 0, 0), 1.0);
+  KinematicRope rope(straightRope());
+  rope.addToWorld(w.world);
+  const btVector3 target(btScalar(0.2), btScalar(0.1), 0);
+  rope.setTarget(target);
+  expectThrowNaming("world", [&] { rope.addToWorld(w.world); });
+  World other;
+  expectThrowNaming("world", [&] { rope.addToWorld(other.world); });
+  expectThrowNaming("body", [&] { rope.followBodyPoint(nullptr, btVector3(0, 0, 0)); });
+  expectThrowNaming("localPoint.y", [&] { rope.followBodyPoint(body, btVector3(0, static_cast<btScalar>(nan), 0)); });
+  expectThrowNaming("target.x", [&] { rope.setTarget(btVector3(static_cast<btScalar>(nan), 0, 0)); });
+  expectThrowNaming("target.y", [&] { rope.setTarget(btVector3(0, static_cast<btScalar>(-HUGE_VAL), 0)); });
+  expectThrowNaming("target.z", [&] { rope.setTarget(btVector3(0, 0, static_cast<btScalar>(1e200))); });
+  expectThrowNaming("path", [&] { rope.followPath(std::function<btVector3(double)>()); });
+  expectThrowNaming("i", [&] { rope.capsule(-1); });
+  expectThrowNaming("i", [&] { rope.capsuleObject(rope.capsuleCount()); });
+  // Nothing changed: still in the first world, still driven to the first target, no body followed.
+  EXPECT_EQ(rope.world(), &w.world);
+  EXPECT_EQ(rope.followedBody(), nullptr);
+  EXPECT_EQ(rope.lastStep().substep, 0);
+  w.step(2);
+  EXPECT_EQ(rope.leadingEnd(), target);
+  EXPECT_EQ(rope.lastStep().targetFailure, nullptr);
+}
+
+TEST(KinematicRope, DebugDrawWorldDrawsTheCentreLine) {
+  struct Lines : btIDebugDraw {
+    int count = 0;
+    int mode = DBG_DrawWireframe;
+    void drawLine(const btVector3&, const btVector3&, const btVector3&) override { ++count; }
+    void drawContactPoint(const btVector3&, const btVector3&, btScalar, int, const btVector3&) override {}
+    void reportErrorWarning(const char*) override {}
+    void draw3dText(const btVector3&, const char*) override {}
+    void setDebugMode(int m) override { mode = m; }
+    int getDebugMode() const override { return mode; }
+  } lines;
+  World w;
+  KinematicRope rope(straightRope());
+  rope.addToWorld(w.world);
+  w.world.setDebugDrawer(&lines);
+  w.world.debugDrawWorld();
+  EXPECT_EQ(lines.count, rope.capsuleCount());  // nothing else in this world draws lines
+  w.world.setDebugDrawer(nullptr);
+}
+
+TEST(KinematicRope, FollowedBodyLeavingTheWorldMakesTheRopeHold) {
+  World w;
+  btRigidBody* body = w.box(btVector3(btScalar(0.1), btScalar(0.1), btScalar(0.1)), btVector3(0, 0, 0), 1.0);
+  body->setLinearVelocity(btVector3(1, 0, 0));
+  KinematicRope rope(straightRope(TractrixVariant::kPolyline, 10));
+  rope.addToWorld(w.world);
+  rope.followBodyPoint(body, btVector3(0, 0, 0));
+  w.step(10);
+  EXPECT_EQ(rope.leadingEnd(), body->getCenterOfMassPosition());
+  w.world.removeRigidBody(body);
+  const Vec3 held = rope.tractrix().leadingEnd();
+  w.step(3);
+  EXPECT_NE(rope.lastStep().targetFailure, nullptr);
+  EXPECT_EQ(rope.tractrix().leadingEnd(), held);
+  w.world.addRigidBody(body);  // World's destructor removes it
+  // Polyline ropes use one capsule per segment.
+  EXPECT_EQ(rope.capsuleCount(), 10);
+}
+
+}  // namespace
+}  // namespace rope::bullet

@@ -1,8 +1,10 @@
 #include "demos/compare/compare.h"
 
+#include <exception>
 #include <sstream>
 
 #include "demos/compare/runners.h"
+#include "rope/common/error.h"
 
 namespace rope::compare {
 
@@ -37,10 +39,19 @@ const char* sceneName(Scene scene) {
 }
 
 Trial run(Engine engine, Scene scene, const Setting& setting, const Limits& limits) {
-  switch (engine) {
-    case Engine::kSplineRope: return splinerope::run(scene, setting, limits);
-    case Engine::kSoftBody: return softbody::run(scene, setting, limits);
-    case Engine::kMuJoCo: return mujoco::run(scene, setting, limits);
+  try {
+    switch (engine) {
+      case Engine::kSplineRope: return splinerope::run(scene, setting, limits);
+      case Engine::kSoftBody: return softbody::run(scene, setting, limits);
+      case Engine::kMuJoCo: return mujoco::run(scene, setting, limits);
+    }
+  } catch (const InvalidArgument&) {
+    throw;
+  } catch (const std::exception& error) {
+    // An engine that cannot even build the scene (e.g. MuJoCo out of memory) is a result, not a crash.
+    Trial trial;
+    trial.status = std::string("could not run: ") + error.what();
+    return trial;
   }
   return Trial{};
 }

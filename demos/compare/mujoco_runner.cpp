@@ -41,7 +41,7 @@ struct RopeLayout {
   std::string rootJoint = "free";  // "free" or "ball" (pinned start)
   bool pinStartToMocap = false;    // the root body is a child of mocap body "pinA"
   bool pinEndToMocap = false;      // connect equality from the rope's end to mocap body "pinB"
-  double endLoadMass = 0;          // kg: a free cube hung from the rope's end (connect)
+  double endLoadMass = 0;          // kg: a cube hung from the rope's end (buildLoadedChainXml)
   double endLoadHalf = 0.1;        // m
   std::string obstacles;           // extra <worldbody> XML
   bool stretch = false;
@@ -56,7 +56,9 @@ std::string buildXml(const RopeLayout& rope, double timestep) {
   std::ostringstream xml;
   xml.precision(17);
   xml << "<mujoco><option timestep='" << timestep << "' gravity='0 -9.81 0'/>"
-      << "<size nconmax='" << 8 * rope.links + 200 << "' njmax='" << 40 * rope.links + 1000 << "'/>"
+      // Constraint buffers: MuJoCo 2.2 allocates njmax x nv dense rows, so size them to the scene.
+      << "<size nconmax='" << (rope.obstacles.empty() ? 10 : 8 * rope.links + 200) << "' njmax='"
+      << (rope.obstacles.empty() ? 50 : 40 * rope.links + 1000) << "'/>"
       << "<worldbody>" << rope.obstacles;
   const Eigen::Vector3d end = rope.start + rope.length * direction;
   if (rope.pinEndToMocap) {
@@ -80,21 +82,43 @@ std::string buildXml(const RopeLayout& rope, double timestep) {
   xml << "<geom type='capsule' size='" << rope.radius << ' ' << half << "' mass='" << rope.linearDensity * spacing
       << "' contype='1' conaffinity='2' friction='0.5 0.005 0.0001'/></composite></body>";
   if (rope.pinStartToMocap) xml << "</body>";
-  if (rope.endLoadMass > 0) {
-    // The load is a free cube hung from the rope's end by a connect equality (the composite builds
-    // its own bodies, so the load cannot be nested inside the last link).
-    const Eigen::Vector3d centre = end + rope.endLoadHalf * direction;
-    xml << "<body name='load' pos='" << centre.x() << ' ' << centre.y() << ' ' << centre.z() << "'><freejoint/>"
-        << "<geom type='box' size='" << rope.endLoadHalf << ' ' << rope.endLoadHalf << ' ' << rope.endLoadHalf
-        << "' mass='" << rope.endLoadMass << "' contype='0' conaffinity='0'/></body>";
-  }
   xml << "</worldbody><equality>";
   if (rope.pinEndToMocap)
     xml << "<connect body1='RB" << rope.links - 1 << "' body2='pinB' anchor='" << half << " 0 0'/>";
-  if (rope.endLoadMass > 0)
-    xml << "<connect body1='RB" << rope.links - 1 << "' body2='load' anchor='" << half << " 0 0'/>";
   xml << "</equality>";
   xml << "</mujoco>";
+  return xml.str();
+}
+
+// The heavy-load rope as an explicit chain of nested bodies (ball joint + optional axial slide
+// joint per link) with the load cube nested in the last link by a ball joint. A composite rope cannot
+// carry the load exactly: its bodies cannot be nested into, and a `connect` equality from a 0.6 g
+// link to a 10 kg box is so soft (MuJoCo scales constraint softness by the effective mass) that the
+// box slid 1.9 m away. tinyxml2 limits nesting depth, so this serves short chains only (<= 64 links).
+std::string buildLoadedChainXml(const RopeLayout& rope, double timestep) {
+  const double spacing = rope.length / rope.links;
+  const double half = 0.5 * spacing;
+  const double angle = rope.angleDegrees * M_PI / 180.0;
+  const Eigen::Vector3d root = rope.start + half * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
+  const double stiffness = rope.axialStiffness / spacing;
+  std::ostringstream xml;
+  xml.precision(17);
+  xml << "<mujoco><option timestep='" << timestep << "' gravity='0 -9.81 0'/><worldbody>";
+  for (int i = 0; i < rope.links; ++i) {
+    xml << "<body name='RB" << i << "' ";
+    if (i == 0) xml << "pos='" << root.x() << ' ' << root.y() << ' ' << root.z() << "' axisangle='0 0 1 " << rope.angleDegrees << "'>";
+    else xml << "pos='" << spacing << " 0 0'>";
+    xml << "<joint type='ball' pos='" << -half << " 0 0'/>";
+    if (rope.stretch)
+      xml << "<joint type='slide' axis='1 0 0' stiffness='" << stiffness << "' damping='" << rope.axialDamping * stiffness << "'/>";
+    xml << "<geom type='capsule' fromto='" << -half << " 0 0 " << half << " 0 0' size='" << rope.radius << "' mass='"
+        << rope.linearDensity * spacing << "' contype='1' conaffinity='2'/>";
+  }
+  xml << "<body name='load' pos='" << half + rope.endLoadHalf << " 0 0'><joint type='ball' pos='" << -rope.endLoadHalf
+      << " 0 0'/><geom type='box' size='" << rope.endLoadHalf << ' ' << rope.endLoadHalf << ' ' << rope.endLoadHalf
+      << "' mass='" << rope.endLoadMass << "' contype='0' conaffinity='0'/></body>";
+  for (int i = 0; i < rope.links; ++i) xml << "</body>";
+  xml << "</worldbody></mujoco>";
   return xml.str();
 }
 
@@ -125,7 +149,7 @@ std::unique_ptr<mjModel, ModelDeleter> loadModel(const std::string& xml) {
 class Chain {
  public:
   Chain(const RopeLayout& layout, double h, int substeps) : layout_(layout), substeps_(substeps) {
-    model_ = loadModel(buildXml(layout, h / substeps));
+    model_ = loadModel(layout.endLoadMass > 0 ? buildLoadedChainXml(layout, h / substeps) : buildXml(layout, h / substeps));
     data_.reset(mj_makeData(model_.get()));
     for (int b = 0; b < layout.links; ++b) {
       const std::string name = "RB" + std::to_string(b);
@@ -134,6 +158,11 @@ class Chain {
     }
     for (int j = 0; j < model_->njnt; ++j)
       if (model_->jnt_type[j] == mjJNT_SLIDE) slides_.push_back(model_->jnt_qposadr[j]);
+    // The composite also ties each stretch joint to zero with a soft joint equality; switched off,
+    // the slide joints' springs (EA / link length) alone carry the axial load, as in a rod.
+    if (layout.stretch)
+      for (int e = 0; e < model_->neq; ++e)
+        if (model_->eq_type[e] == mjEQ_JOINT) model_->eq_active[e] = 0;
     if (model_->nmocap > 0) mocapA_ = mocapIndex("pinA"), mocapB_ = mocapIndex("pinB");
     mj_forward(model_.get(), data_.get());
   }
@@ -289,7 +318,7 @@ Trial heavyLoad(const Setting& setting, const Limits& limits) {
   layout.angleDegrees = -90;
   layout.rootJoint = "ball";
   layout.stretch = setting.stretch;
-  // The 10 kg box hangs from the rope's end (connect equality to a free cube).
+  // The 10 kg box hangs from the rope's end by a ball joint (an explicit chain, see buildLoadedChainXml).
   layout.endLoadMass = crane.boxMass;
   const double h = crane.timeStep;
   Chain chain(layout, h, setting.substeps);

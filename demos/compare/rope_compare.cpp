@@ -1,4 +1,5 @@
 // rope_compare [--quick] [--out PREFIX] [--repeats N]
+// rope_compare --try ENGINE SCENE RESOLUTION ITERATIONS SUBSTEPS STRETCH(0/1) SECONDS
 //
 // Runs the five comparison scenes (compare.h) with SplineRope, Bullet's soft-body rope and a MuJoCo
 // chain, sweeping each peer's resolution and solver setting, and writes PREFIX.json (every trial),
@@ -70,7 +71,7 @@ std::vector<Plan> fullPlan(double wallBudget) {
     Plan p{Scene::kCatenary, limits, {}};
     p.settings[Engine::kSplineRope] = {res(6), res(8), res(12), res(16)};
     for (int n : {16, 32, 64, 128})
-      for (int it : {1, 4, 16, 64}) p.settings[Engine::kSoftBody].push_back(res(n, it));
+      for (int it : {1, 4, 16, 64, 256}) p.settings[Engine::kSoftBody].push_back(res(n, it));
     for (int n : {8, 16, 32, 64})
       for (int sub : {1, 4}) p.settings[Engine::kMuJoCo].push_back(res(n, 1, sub));
     plans.push_back(p);
@@ -80,9 +81,12 @@ std::vector<Plan> fullPlan(double wallBudget) {
     p.settings[Engine::kSplineRope] = {res(8), res(12)};
     for (int n : {8, 16, 32, 64})
       for (int it : {4, 16, 64, 256}) p.settings[Engine::kSoftBody].push_back(res(n, it));
-    p.settings[Engine::kMuJoCo] = {res(16)};
-    for (int n : {8, 16, 32})
-      for (int sub : {1, 16, 64}) p.settings[Engine::kMuJoCo].push_back(res(n, 1, sub, true));
+    // Position-based links converge to inextensible with iterations; follow the coarsest rope further.
+    for (int it : {1024, 4096}) p.settings[Engine::kSoftBody].push_back(res(8, it));
+    p.settings[Engine::kSoftBody].push_back(res(16, 1024));
+    p.settings[Engine::kMuJoCo] = {res(16), res(16, 1, 16)};  // inextensible links
+    for (int n : {4, 8, 16})
+      for (int sub : {1, 4, 16, 64}) p.settings[Engine::kMuJoCo].push_back(res(n, 1, sub, true));
     plans.push_back(p);
   }
   {
@@ -90,13 +94,14 @@ std::vector<Plan> fullPlan(double wallBudget) {
     p.settings[Engine::kSplineRope] = {res(16)};
     for (int n : {16, 33, 64, 128}) p.settings[Engine::kSoftBody].push_back(res(n, 16));
     for (int n : {16, 33, 64}) p.settings[Engine::kMuJoCo].push_back(res(n));
+    for (int n : {16, 33, 64}) p.settings[Engine::kMuJoCo].push_back(res(n, 1, 4));
     plans.push_back(p);
   }
   {
     Plan p{Scene::kDrape, limits, {}};
     p.settings[Engine::kSplineRope] = {res(16)};
     p.settings[Engine::kSoftBody] = {res(32, 16), res(64, 16)};
-    p.settings[Engine::kMuJoCo] = {res(32), res(64)};
+    p.settings[Engine::kMuJoCo] = {res(32), res(64), res(32, 1, 4)};
     plans.push_back(p);
   }
   return plans;
@@ -354,6 +359,27 @@ void writePlotData(const std::string& path, const std::vector<Entry>& entries) {
   }
 }
 
+// --try ENGINE SCENE RESOLUTION ITERATIONS SUBSTEPS STRETCH SECONDS: one trial, its metrics printed
+// (for looking at one setting; engine and scene by the names used in the JSON).
+int tryOne(char** args) {
+  Engine engine = Engine::kSplineRope;
+  for (Engine e : kEngines)
+    if (std::strcmp(engineName(e), args[0]) == 0) engine = e;
+  Scene scene = Scene::kCatenary;
+  for (Scene s : {Scene::kCatenary, Scene::kHeavyLoad, Scene::kThinBar, Scene::kDrape, Scene::kScaling})
+    if (std::strcmp(sceneName(s), args[1]) == 0) scene = s;
+  Setting setting = res(std::atoi(args[2]), std::atoi(args[3]), std::atoi(args[4]), std::atoi(args[5]) != 0);
+  Limits limits;
+  limits.seconds = std::atof(args[6]);
+  limits.wallBudget = 60;
+  const Trial t = run(engine, scene, setting, limits);
+  std::printf("%s %s %s: %s, %d dof, %.3f s simulated, %.4f wall s per simulated s, %.1f us per step\n", engineName(engine),
+              sceneName(scene), setting.label().c_str(), t.status.c_str(), t.dofs, t.simulatedSeconds, t.costPerSecond(),
+              t.stepMicroseconds());
+  for (const auto& [name, value] : t.metrics) std::printf("  %s = %.6g\n", name.c_str(), value);
+  return 0;
+}
+
 int main(int argc, char** argv) {
   bool quick = false;
   std::string out = "rope_compare";
@@ -363,6 +389,7 @@ int main(int argc, char** argv) {
     if (arg == "--quick") quick = true;
     else if (arg == "--out" && i + 1 < argc) out = argv[++i];
     else if (arg == "--repeats" && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--try" && i + 7 < argc) return tryOne(argv + i + 1);
     else {
       std::cerr << "usage: rope_compare [--quick] [--out PREFIX] [--repeats N]\n";
       return 2;
@@ -423,7 +450,9 @@ int main(int argc, char** argv) {
   std::map<Engine, std::string> scalingCells;
   for (const Entry& e : byScene[Scene::kScaling]) {
     std::string& cell = scalingCells[e.engine];
-    cell += (cell.empty() ? "" : " / ") + (e.trial.ok() ? fmt(e.medianStepUs() < 100 ? "%.1f" : "%.0f", e.medianStepUs()) : e.trial.status);
+    // A run that failed still timed its steps until then: show the time and how it ended.
+    cell += (cell.empty() ? "" : " / ") + fmt(e.medianStepUs() < 100 ? "%.1f" : "%.0f", e.medianStepUs()) +
+            (e.trial.ok() ? "" : " (" + e.trial.status + " at step " + std::to_string(e.trial.steps) + ")");
   }
   std::string sizeText;
   for (int n : sizes) sizeText += (sizeText.empty() ? "" : " / ") + std::to_string(n);

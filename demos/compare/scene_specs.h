@@ -14,8 +14,8 @@ namespace rope::compare {
 // averaged over the last averagingWindow seconds (the ropes are lightly damped, not at rest).
 struct CatenarySpec {
   demos::HangSceneSettings hang;  // the demo scene's defaults: 1.25 m over 1 m, r = 1 cm, E = 2e8 Pa
-  double seconds = 5.0;           // s simulated
-  double averagingWindow = 1.0;   // s
+  double seconds = 8.0;           // s simulated (pins closed after 1 s)
+  double averagingWindow = 2.0;   // s
   double analyticSag() const;     // m, inextensible catenary
   double pinDistance(double t) const;  // m, HangScene's smoothstep schedule
 };

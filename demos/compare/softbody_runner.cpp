@@ -235,6 +235,8 @@ Trial heavyLoad(const Setting& setting, const Limits& limits) {
         ++samples;
       });
   trial.dofs = 3 * (setting.resolution - 1);
+  // Where the load ended up: a rope that cannot carry it stretches until the load lies on the ground.
+  trial.metrics["load_height_m"] = double(rope.m_nodes[last].m_x.y());
   if (samples > 0 && trial.ok()) {
     trial.metrics["strain"] = strainSum / samples;
     trial.metrics["strain_error"] = strainSum / samples / spec.expectedStrain() - 1.0;

@@ -1,18 +1,22 @@
 #pragma once
 // One-way contact of a kinematic rope on a dynamic body: the rope is moved by its driver and is never
-// pushed back, so the contact is resolved on the body alone, as against an infinitely heavy pusher.
+// pushed back, so the contacts are resolved on the body alone, as against an infinitely heavy pusher.
 //
-// With n the contact normal (from the body into the rope, contact.h), d the signed distance, v_r the
-// rope's velocity at the contact and v_b the body's velocity at its contact point, the relative
-// normal speed is v_n = n.(v_r - v_b) (< 0: approaching). The body gets the normal impulse
-//   j_n = max(0, v_min - v_n) / (n.K n),   v_min = -d / h            for d >= 0 (speculative),
-//                                          v_min = -recovery d / h   for d < 0  (penetrating),
-// along -n at its contact point (K the body's impulse matrix there, computeImpulseDenominator), so
-// after it the gap closes at most to zero within the next substep, and a penetration shrinks by the
-// fraction `recovery` per substep. Then a Coulomb friction impulse of at most friction * j_n drags the
-// contact point towards the rope's tangential velocity (off the centre of mass it also turns the
-// body, so the normal impulse is topped up if that made the normal speed fall below v_min again).
-// All are exact velocity changes at the body's effective mass, hence stable for any mass and step.
+// For a contact with normal n (from the body into the rope, contact.h), signed distance d, rope
+// velocity v_r and body point velocity v_b, the relative normal speed is
+//   v_n = n.(v_r - v_b - g h)    (< 0: approaching),
+// where g h is the gravity increment Bullet will add to the body's velocity before it next moves it
+// (the rope acts after a substep's integration; without it a body resting on the rope would fall
+// g h^2 and be pushed back every substep). The contacts of one body are solved together by projected
+// Gauss-Seidel on accumulated impulses, like Bullet's own solver: each contact's normal impulse
+// j_n >= 0 brings v_n up to
+//   v_min = -d / h               for d >= 0 (speculative: the gap may close, not be passed),
+//   v_min = -recovery * d / h    for d < 0  (a penetration shrinks by `recovery` per substep),
+// and a friction impulse j_t, |j_t| <= friction * j_n, drags the body's contact point towards the
+// rope's tangential velocity. Every update is an exact velocity change at the body's effective mass
+// at the contact (computeImpulseDenominator), so the scheme is stable for any mass and step. A body
+// resting on a rope holds its position; its velocity read between steps is then the upward g h that
+// the next substep's gravity cancels, rather than zero.
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
@@ -24,12 +28,19 @@ namespace rope::bullet {
 struct OneWayContactLaw {
   double penetrationRecovery = 0.2;  // in (0, 1], fraction of the depth removed per substep
   double friction = 0.3;             // Coulomb coefficient, >= 0
+  int iterations = 10;               // Gauss-Seidel sweeps over one body's contacts, >= 1
 };
 
-// Applies the impulse above to `body` (which must be dynamic: inverse mass > 0) and wakes it.
-// ropeVelocity in m/s, h in s (> 0). Returns the total impulse given to the body (N s, world frame;
-// zero when the contact is separating fast enough). The caller guarantees finite input.
-btVector3 applyOneWayContact(btRigidBody& body, const Contact& contact, const btVector3& ropeVelocity, double h,
-                             const OneWayContactLaw& law);
+struct OneWayContact {
+  Contact contact;                         // body-rope contact (contact.h conventions)
+  btVector3 ropeVelocity{0, 0, 0};         // m/s, the rope's velocity at the contact
+  double normalImpulse = 0.0;              // N s, out: accumulated j_n >= 0 (applied along -normal)
+  btVector3 frictionImpulse{0, 0, 0};      // N s, out: accumulated tangential impulse on the body
+  btVector3 impulse() const { return frictionImpulse - contact.normal * static_cast<btScalar>(normalImpulse); }
+};
+
+// Solves and applies the impulses of `count` contacts on `body` (dynamic: inverse mass > 0) and wakes
+// it. h in s (> 0). The caller guarantees finite input; contacts' outputs are overwritten.
+void solveOneWayContacts(btRigidBody& body, OneWayContact* contacts, int count, double h, const OneWayContactLaw& law);
 
 }  // namespace rope::bullet

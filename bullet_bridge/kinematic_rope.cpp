@@ -360,37 +360,56 @@ void KinematicRope::push(double h) {
   OneWayContactLaw law;
   law.penetrationRecovery = settings_.penetrationRecovery;
   law.friction = settings_.friction;
-  const btRigidBody* skipped = nullptr;  // a body with an unsupported shape, skipped once per substep
-  for (const Candidate& candidate : candidates_) {
-    if (candidate.body == skipped) continue;
-    const Capsule capsule = this->capsule(candidate.capsule);
-    scratch_.clear();
-    try {
-      findContacts(capsule, *candidate.body, settings_.speculativeMargin, scratch_);
-    } catch (const InvalidArgument&) {
-      // Shapes the narrowphase does not handle; nothing may throw out of Bullet's step.
+  law.iterations = settings_.solverIterations;
+  // Candidates are sorted by body: gather each body's contacts over all capsules, solve them together.
+  std::size_t first = 0;
+  while (first < candidates_.size()) {
+    btRigidBody* body = candidates_[first].body;
+    std::size_t last = first;
+    while (last < candidates_.size() && candidates_[last].body == body) ++last;
+    bodyContacts_.clear();
+    bool unsupported = false;
+    for (std::size_t c = first; c < last && !unsupported; ++c) {
+      const int capsuleIndex = candidates_[c].capsule;
+      const std::size_t k = static_cast<std::size_t>(capsuleIndex);
+      scratch_.clear();
+      try {
+        findContacts(capsule(capsuleIndex), *body, settings_.speculativeMargin, scratch_);
+      } catch (const InvalidArgument&) {
+        unsupported = true;  // a shape the narrowphase does not handle; nothing may throw out of Bullet's step
+        break;
+      }
+      const btVector3 velocityA = (axis_[k] - previousAxis_[k]) / static_cast<btScalar>(h);
+      const btVector3 velocityB = (axis_[k + 1] - previousAxis_[k + 1]) / static_cast<btScalar>(h);
+      for (const Contact& contact : scratch_) {
+        OneWayContact entry;
+        entry.contact = contact;
+        // The rope's velocity at the contact over this substep, linear along the capsule.
+        entry.ropeVelocity = velocityA + (velocityB - velocityA) * contact.t;
+        bodyContacts_.push_back(entry);
+        KinematicContactRecord record;
+        record.body = body;
+        record.capsule = capsuleIndex;
+        record.s = ends_[k] + static_cast<double>(contact.t) * (ends_[k + 1] - ends_[k]);
+        record.point = contact.pointOnBody;
+        record.normal = contact.normal;
+        record.depth = -static_cast<double>(contact.distance);
+        report_.maxPenetration = std::max(report_.maxPenetration, record.depth);
+        report_.contacts.push_back(record);
+      }
+    }
+    if (unsupported) {
       ++report_.unsupportedBodies;
-      skipped = candidate.body;
-      continue;
+      report_.contacts.resize(report_.contacts.size() - bodyContacts_.size());
+    } else if (!bodyContacts_.empty()) {
+      solveOneWayContacts(*body, bodyContacts_.data(), static_cast<int>(bodyContacts_.size()), h, law);
+      const std::size_t base = report_.contacts.size() - bodyContacts_.size();
+      for (std::size_t i = 0; i < bodyContacts_.size(); ++i) {
+        report_.contacts[base + i].impulse = bodyContacts_[i].impulse();
+        report_.totalImpulse += bodyContacts_[i].impulse();
+      }
     }
-    const std::size_t k = static_cast<std::size_t>(candidate.capsule);
-    const btVector3 velocityA = (axis_[k] - previousAxis_[k]) / static_cast<btScalar>(h);
-    const btVector3 velocityB = (axis_[k + 1] - previousAxis_[k + 1]) / static_cast<btScalar>(h);
-    for (const Contact& contact : scratch_) {
-      // The rope's velocity at the contact over this substep, linear along the capsule.
-      const btVector3 ropeVelocity = velocityA + (velocityB - velocityA) * contact.t;
-      KinematicContactRecord record;
-      record.body = candidate.body;
-      record.capsule = candidate.capsule;
-      record.s = ends_[k] + static_cast<double>(contact.t) * (ends_[k + 1] - ends_[k]);
-      record.point = contact.pointOnBody;
-      record.normal = contact.normal;
-      record.depth = -static_cast<double>(contact.distance);
-      report_.maxPenetration = std::max(report_.maxPenetration, record.depth);
-      record.impulse = applyOneWayContact(*candidate.body, contact, ropeVelocity, h, law);
-      report_.totalImpulse += record.impulse;
-      report_.contacts.push_back(record);
-    }
+    first = last;
   }
 }
 

@@ -15,8 +15,8 @@
 // CF_NO_CONTACT_RESPONSE, so neither Bullet's solver nor the dynamic ropes' RopeWorld react to them
 // (their userIndex2 is kKinematicRopeTag, not the dynamic ropes' tag). After moving, the rope finds
 // the dynamic bodies overlapping its capsules through the broadphase, measures contacts with the
-// bridge's narrowphase (find_contacts.h) and pushes each body by a one-way impulse
-// (kinematic_push.h). Nothing acts on the rope: static and kinematic objects, the body it follows,
+// bridge's narrowphase (find_contacts.h) and pushes each body by one-way contact impulses, all
+// contacts of a body solved together (kinematic_push.h). Nothing acts on the rope: static and kinematic objects, the body it follows,
 // and other ropes (dynamic or kinematic) are passed through.
 //
 // Bullet's debugDrawWorld() draws the rope's centre line (the capsule axes) through btIDebugDraw.
@@ -35,6 +35,7 @@
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/capsule.h"
 #include "bullet_bridge/contact.h"
+#include "bullet_bridge/kinematic_push.h"
 #include "bullet_bridge/kinematic_rope_settings.h"
 #include "rope/tractrix/tractrix_rope.h"
 
@@ -157,6 +158,7 @@ class KinematicRope {
   std::vector<std::unique_ptr<btCollisionObject>> objects_;
   std::vector<Candidate> candidates_;
   std::vector<Contact> scratch_;
+  std::vector<OneWayContact> bodyContacts_;
   KinematicRopeStepReport report_;
 };
 

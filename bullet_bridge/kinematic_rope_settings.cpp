@@ -17,6 +17,9 @@ void KinematicRopeSettings::validate() const {
     throw InvalidArgument("settings.penetrationRecovery", formatValue(penetrationRecovery), "must be <= 1");
   }
   requireNonNegative("settings.friction", friction);
+  if (solverIterations < 1 || solverIterations > 1000) {
+    throw InvalidArgument("settings.solverIterations", std::to_string(solverIterations), "must be in [1, 1000]");
+  }
   if (collisionGroup == 0) {
     throw InvalidArgument("settings.collisionGroup", "0", "must have at least one bit set");
   }

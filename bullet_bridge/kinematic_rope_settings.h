@@ -8,6 +8,7 @@
 // contact point, at least the rope's normal velocity there, plus a separating speed proportional
 // to the penetration; the impulse is the body's own effective mass times a velocity change, so it
 // is stable for any body mass (a penalty spring on an explicit body would need a stiffness cap).
+// All contacts of one body are solved together like Bullet's solver does (solverIterations).
 
 namespace rope::bullet {
 
@@ -31,6 +32,10 @@ struct KinematicRopeSettings {
   // drags the body's contact point towards the rope's tangential velocity, at most friction times
   // the normal impulse of the same contact.
   double friction = 0.3;
+  // Projected Gauss-Seidel sweeps over the contacts of one body per substep, in [1, 1000]. One sweep
+  // lets the first contact take the whole load; a body resting on several contacts then creeps and
+  // turns (measured: a box on two ropes drifted 12 mm in 2 s with one sweep per substep).
+  int solverIterations = 10;
   // Broadphase filter of the rope's capsules. The default group is a bit that neither stock Bullet
   // filters nor the dynamic ropes' default group (1 << 10) use; the mask accepts everything. A body
   // is pushed only if each side's mask accepts the other's group.

@@ -520,6 +520,7 @@ TEST(KinematicRope, BadInputThrowsNamingTheParameterAndChangesNothing) {
   expectThrowNaming("settings.penetrationRecovery",
                     withSettings([](KinematicRopeSettings& s) { s.penetrationRecovery = 1.5; }));
   expectThrowNaming("settings.friction", withSettings([](KinematicRopeSettings& s) { s.friction = HUGE_VAL; }));
+  expectThrowNaming("settings.solverIterations", withSettings([](KinematicRopeSettings& s) { s.solverIterations = 0; }));
   expectThrowNaming("settings.collisionGroup", withSettings([](KinematicRopeSettings& s) { s.collisionGroup = 0; }));
 
   World w;

@@ -5,9 +5,11 @@
 // time step; stiffness and damping are matched as far as each model allows (see each runner).
 // SI units throughout; y is up in all three engines.
 
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace rope::compare {
 
@@ -31,6 +33,7 @@ struct Setting {
 struct Limits {
   double wallBudget = 20.0;  // s, > 0
   double seconds = 0.0;      // simulated s; 0: the scene's default
+  double loadMass = 0.0;     // kg, heavy-load scene only; 0: the scene's 10 kg
 };
 
 // What one run of one scene with one setting measured.
@@ -41,6 +44,16 @@ struct Trial {
   int steps = 0;                  // scene steps taken
   int dofs = 0;                   // degrees of freedom at the end (3 per control point / node; nv for MuJoCo)
   std::map<std::string, double> metrics;  // scene figures (sag_error, strain_error, ...)
+  std::vector<double> stepSeconds;        // wall time of each timed step
+
+  // Median wall time of one step, us: robust against the odd step where the shared machine
+  // preempted the process (the scaling figure).
+  double medianStepMicroseconds() const {
+    if (stepSeconds.empty()) return kNaN;
+    std::vector<double> sorted = stepSeconds;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    return 1e6 * sorted[sorted.size() / 2];
+  }
 
   bool ok() const { return status == "ok"; }
   // Wall seconds per simulated second (NaN before any step).

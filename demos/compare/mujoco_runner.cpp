@@ -242,7 +242,8 @@ void runChain(Chain& chain, double h, int steps, double massDamping, double wall
     before(i * h);
     const auto start = Clock::now();
     const bool ok = chain.step(massDamping);
-    trial.wallSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+    trial.stepSeconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    trial.wallSeconds += trial.stepSeconds.back();
     trial.steps = i;
     trial.simulatedSeconds = i * h;
     if (!ok) {
@@ -304,6 +305,7 @@ Trial catenary(const Setting& setting, const Limits& limits, bool timePerStepOnl
 
 Trial heavyLoad(const Setting& setting, const Limits& limits) {
   HeavyLoadSpec spec;
+  if (limits.loadMass > 0) spec.crane.boxMass = limits.loadMass;
   const demos::CraneSceneSettings& crane = spec.crane;
   RodSettings rod = crane.rod;
   rod.restLength = crane.ropeLength;

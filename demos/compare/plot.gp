@@ -15,8 +15,8 @@ set title "(1) catenary, slack 1.25: sag vs analytic catenary"
 plot data index 0 using 1:2 with points pt 7 ps 1.6 lc rgb "#d62728" title "SplineRope", \
      data index 1 using 1:2 with points pt 5 ps 1.2 lc rgb "#1f77b4" title "Bullet soft body", \
      data index 2 using 1:2 with points pt 9 ps 1.4 lc rgb "#2ca02c" title "MuJoCo chain"
-set title "(2) heavy load, 10 kg on 1 m / 10 g: strain vs W/(EA)"
+set title "(2) heavy load, 10 kg on 1 m / 10 g: strain vs W/(EA) (soft body ~24000 %: load on the ground)"
 plot data index 3 using 1:2 with points pt 7 ps 1.6 lc rgb "#d62728" title "SplineRope", \
      data index 4 using 1:2 with points pt 5 ps 1.2 lc rgb "#1f77b4" title "Bullet soft body", \
-     data index 5 using 1:2 with points pt 9 ps 1.4 lc rgb "#2ca02c" title "MuJoCo chain (stretch joints)"
+     data index 5 using 1:2 with points pt 9 ps 1.4 lc rgb "#2ca02c" title "MuJoCo chain (100 %: rigid links)"
 unset multiplot

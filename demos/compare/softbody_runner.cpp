@@ -147,7 +147,8 @@ void runWorld(SoftWorld& world, double h, double duration, const Limits& limits,
     before(i * h);
     const auto start = Clock::now();
     world.world().stepSimulation(btScalar(h), 0, btScalar(h));
-    trial.wallSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+    trial.stepSeconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    trial.wallSeconds += trial.stepSeconds.back();
     trial.steps = i;
     trial.simulatedSeconds = i * h;
     if (world.exploded()) {
@@ -212,6 +213,7 @@ Trial catenary(const Setting& setting, const Limits& limits, bool timePerStepOnl
 
 Trial heavyLoad(const Setting& setting, const Limits& limits) {
   HeavyLoadSpec spec;
+  if (limits.loadMass > 0) spec.crane.boxMass = limits.loadMass;
   const demos::CraneSceneSettings& crane = spec.crane;
   RodSettings rod = crane.rod;
   rod.restLength = crane.ropeLength;

@@ -119,6 +119,7 @@ void runScene(SceneT& scene, double duration, const Limits& limits, Trial& trial
 
 Trial heavyLoad(const Setting& setting, const Limits& limits) {
   HeavyLoadSpec spec;
+  if (limits.loadMass > 0) spec.crane.boxMass = limits.loadMass;
   spec.crane.rod.initialControlPoints = setting.resolution;
   spec.crane.rod.maxControlPoints = std::max(spec.crane.rod.maxControlPoints, setting.resolution);
   const double duration = limits.seconds > 0 ? limits.seconds : spec.seconds;
@@ -180,6 +181,7 @@ Trial scaling(const Setting& setting, const Limits& limits) {
     const auto start = Clock::now();
     const bool ok = stepCatenary(spec.catenary, rope, i * h, h);
     const double wall = seconds(start, Clock::now());
+    if (i > spec.warmupSteps) trial.stepSeconds.push_back(wall);
     if (!ok) {
       trial.status = "step failed";
       break;

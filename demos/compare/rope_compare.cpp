@@ -568,7 +568,14 @@ int main(int argc, char** argv) {
   char header[256];
   std::snprintf(header, sizeof header, "rope_compare%s: %d repeat(s), %.0f s wall in total\n\n", quick ? " --quick" : "",
                 repeats, total);
-  std::ofstream(out + ".md") << header << md.str() << "\nEvery setting:\n\n" << sweep.str();
+  {
+    std::ofstream table(out + ".md");
+    table << header << md.str() << "\nEvery setting:\n\n" << sweep.str();
+    if (!table) {
+      std::fprintf(stderr, "rope_compare: cannot write %s.md (does the directory exist?)\n", out.c_str());
+      return 1;
+    }
+  }
   writeJson(out + ".json", all, repeats, total, quick, summary);
   writePlotData(out + ".dat", all);
   std::cout << header << md.str();

@@ -89,6 +89,11 @@ void CapsuleProxies::rebuild(const Rod& rod) {
     proxy.object->setUserPointer(&owner_);
     proxy.object->setUserIndex(size());
     proxy.object->setUserIndex2(kRopeCapsuleTag);
+    // Never "active" for Bullet (a static object asleep: no island ever wakes it, since it has no
+    // manifolds), so its dispatcher skips pairs of two rope capsules at once
+    // (btCollisionDispatcher::needsCollision); the bridge reads them from the pair cache itself.
+    // DISABLE_SIMULATION would say the same, but Bullet uses it to report an object it gave up on.
+    proxy.object->setActivationState(ISLAND_SLEEPING);
     // A box covering the capsule now, so a capsule created mid-run is found before its first update.
     const std::size_t i = proxies_.size();
     btVector3 lo = axis_[i], hi = axis_[i];

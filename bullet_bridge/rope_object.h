@@ -128,6 +128,7 @@ class RopeObject {
   Rod rod_;
   BulletRopeSettings settings_;
   std::vector<CutPartner> cutPartners_;
+  int worldIndex_ = -1;  // position in its RopeWorld's ropes(), -1 outside a world
   std::unique_ptr<CapsuleProxies> proxies_;
   RopeWorld* world_ = nullptr;
   std::vector<Attachment> attachments_;

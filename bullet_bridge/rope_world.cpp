@@ -1,11 +1,13 @@
 #include "bullet_bridge/rope_world.h"
 
 #include <BulletCollision/BroadphaseCollision/btOverlappingPairCache.h>
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 #include <BulletDynamics/Dynamics/btActionInterface.h>
 #include <LinearMath/btAabbUtil2.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <tuple>
 
 #include "bullet_bridge/capsule_proxies.h"
@@ -64,6 +66,7 @@ bool RopeWorld::containsBody(const btCollisionObject& object) const {
 void RopeWorld::addRope(RopeObject& rope) {
   if (contains(rope)) throw InvalidArgument("rope", "already in this world", "must not be added twice");
   if (rope.world() != nullptr) throw InvalidArgument("rope", "in another world", "must be removed from it first");
+  rope.worldIndex_ = static_cast<int>(ropes_.size());
   ropes_.push_back(&rope);
   rope.enterWorld(*this, world_);
 }
@@ -72,7 +75,9 @@ void RopeWorld::removeRope(RopeObject& rope) {
   const auto it = std::find(ropes_.begin(), ropes_.end(), &rope);
   if (it == ropes_.end()) throw InvalidArgument("rope", "not in this world", "must have been added to it");
   rope.leaveWorld();
+  rope.worldIndex_ = -1;
   ropes_.erase(it);
+  for (std::size_t i = 0; i < ropes_.size(); ++i) ropes_[i]->worldIndex_ = static_cast<int>(i);
   // The last report must not point at a rope that may be destroyed next.
   report_.contacts.clear();
   report_.ropes.clear();
@@ -96,18 +101,24 @@ void RopeWorld::substep(double h) {
     RopeObject* rope1 = CapsuleProxies::ropeOf(*object1);
     if (rope0 == nullptr && rope1 == nullptr) continue;  // no rope
     if (rope0 != nullptr && rope1 != nullptr) {
-      // Two rope capsules: a rope-rope or self-contact candidate (rope_rope_contact.h).
-      if (!TestAabbAgainstAabb2(proxy0->m_aabbMin, proxy0->m_aabbMax, proxy1->m_aabbMin, proxy1->m_aabbMax)) continue;
-      const auto slot0 = std::find(ropes_.begin(), ropes_.end(), rope0);
-      const auto slot1 = std::find(ropes_.begin(), ropes_.end(), rope1);
-      if (slot0 == ropes_.end() || slot1 == ropes_.end()) continue;
-      RopeCapsulePair pair{static_cast<int>(slot0 - ropes_.begin()), CapsuleProxies::capsuleIndexOf(*object0),
-                           static_cast<int>(slot1 - ropes_.begin()), CapsuleProxies::capsuleIndexOf(*object1)};
-      if (pair.ropeA > pair.ropeB || (pair.ropeA == pair.ropeB && pair.capsuleA > pair.capsuleB)) {
-        std::swap(pair.ropeA, pair.ropeB);
-        std::swap(pair.capsuleA, pair.capsuleB);
+      // Two rope capsules: a rope-rope or self-contact candidate (rope_rope_contact.h). Neighbouring
+      // capsules of one rope always overlap and are never a contact: dropped before anything else.
+      const int capsule0 = CapsuleProxies::capsuleIndexOf(*object0);
+      const int capsule1 = CapsuleProxies::capsuleIndexOf(*object1);
+      if (rope0 == rope1 && std::abs(capsule0 - capsule1) <= 1) continue;
+      // The swept boxes themselves: Bullet widens its copies by the contact breaking threshold on
+      // every side (btCollisionWorld::updateSingleAabb), which for two ropes side by side paired
+      // every capsule with dozens of the other rope's.
+      const btVector3 widening(gContactBreakingThreshold, gContactBreakingThreshold, gContactBreakingThreshold);
+      if (!TestAabbAgainstAabb2(proxy0->m_aabbMin + widening, proxy0->m_aabbMax - widening,
+                                proxy1->m_aabbMin + widening, proxy1->m_aabbMax - widening)) {
+        continue;
       }
-      capsulePairs_.push_back(pair);
+      const int index0 = rope0->worldIndex_, index1 = rope1->worldIndex_;
+      if (index0 < 0 || index1 < 0) continue;
+      capsulePairs_.push_back(index0 < index1 || (index0 == index1 && capsule0 < capsule1)
+                                  ? RopeCapsulePair{index0, capsule0, index1, capsule1}
+                                  : RopeCapsulePair{index1, capsule1, index0, capsule0});
       continue;
     }
     RopeObject* rope = rope0 != nullptr ? rope0 : rope1;
@@ -115,9 +126,8 @@ void RopeWorld::substep(double h) {
     // Triggers and other objects that want no contact response get none from ropes either.
     if (body->hasContactResponse() == false) continue;
     if (!TestAabbAgainstAabb2(proxy0->m_aabbMin, proxy0->m_aabbMax, proxy1->m_aabbMin, proxy1->m_aabbMax)) continue;
-    const auto slot = std::find(ropes_.begin(), ropes_.end(), rope);
-    if (slot == ropes_.end()) continue;
-    candidates_[static_cast<std::size_t>(slot - ropes_.begin())].push_back(body);
+    if (rope->worldIndex_ < 0) continue;
+    candidates_[static_cast<std::size_t>(rope->worldIndex_)].push_back(body);
   }
 
   report_.pairScanSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - scanStart).count();
@@ -143,12 +153,6 @@ void RopeWorld::substep(double h) {
   std::sort(capsulePairs_.begin(), capsulePairs_.end(), [](const RopeCapsulePair& a, const RopeCapsulePair& b) {
     return std::tie(a.ropeA, a.capsuleA, a.ropeB, a.capsuleB) < std::tie(b.ropeA, b.capsuleA, b.ropeB, b.capsuleB);
   });
-  capsulePairs_.erase(std::unique(capsulePairs_.begin(), capsulePairs_.end(),
-                                  [](const RopeCapsulePair& a, const RopeCapsulePair& b) {
-                                    return a.ropeA == b.ropeA && a.capsuleA == b.capsuleA && a.ropeB == b.ropeB &&
-                                           a.capsuleB == b.capsuleB;
-                                  }),
-                      capsulePairs_.end());
   const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
   if (ropeContacts < 0) report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
   for (std::size_t r = 0; r < ropes_.size(); ++r) {

@@ -2,7 +2,8 @@
 // substep: one 64-control-point rope draped over a field of 100 static boxes, and N ropes resting on
 // a ground plane (N = 1, 10, 100) to show how the cost grows. Counters split each step into Bullet's
 // own work (broadphase, its narrowphase and solver for the rigid bodies: the step minus the rope
-// action), the pair-cache scan, our narrowphase + contact law, the rod solve and the proxy update.
+// action), the pair-cache scan, our narrowphase + contact law, the rod solve, the proxy update and
+// rope-rope contact (capsule pairs of the ropes themselves, which now share the broadphase).
 
 #include <benchmark/benchmark.h>
 #include <btBulletDynamicsCommon.h>
@@ -69,10 +70,11 @@ RodSettings ropeSettings(int controlPoints, double length) {
 
 // Steps the world `state` times, reporting per-step shares as counters (ms per step).
 void runSteps(benchmark::State& state, World& w) {
-  double bridge = 0.0, scan = 0.0, contact = 0.0, solve = 0.0, proxy = 0.0;
+  double bridge = 0.0, scan = 0.0, contact = 0.0, solve = 0.0, proxy = 0.0, ropeRope = 0.0;
   long contacts = 0;
   w.ropes->setSubstepCallback([&](const ContactReport& report) {
     scan += report.pairScanSeconds;
+    ropeRope += report.ropeContactSeconds;
     for (const RopeStepRecord& rope : report.ropes) {
       contact += rope.contactSeconds;
       solve += rope.solveSeconds;
@@ -86,7 +88,7 @@ void runSteps(benchmark::State& state, World& w) {
     w.world.stepSimulation(btScalar(kStep), 1, btScalar(kStep));
     total += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
-  bridge = scan + contact + solve + proxy;
+  bridge = scan + contact + solve + proxy + ropeRope;
   const double n = static_cast<double>(state.iterations());
   state.counters["ms_step"] = 1e3 * total / n;
   state.counters["ms_bullet"] = 1e3 * (total - bridge) / n;
@@ -94,6 +96,7 @@ void runSteps(benchmark::State& state, World& w) {
   state.counters["ms_narrowphase"] = 1e3 * contact / n;
   state.counters["ms_rod_solve"] = 1e3 * solve / n;
   state.counters["ms_proxies"] = 1e3 * proxy / n;
+  state.counters["ms_rope_rope"] = 1e3 * ropeRope / n;
   state.counters["contacts"] = static_cast<double>(contacts) / n;
   w.ropes->setSubstepCallback(nullptr);
 }
@@ -117,21 +120,28 @@ void BM_RopeOverBoxField(benchmark::State& state) {
 }
 BENCHMARK(BM_RopeOverBoxField)->Unit(benchmark::kMillisecond);
 
-// N ropes (1 m, 16 control points) resting side by side on a ground plane.
+// N ropes (1 m, 16 control points) resting side by side on a ground plane; with range(1) == 0 the
+// ropes leave each other out of the broadphase (collisionMask without the rope group: no rope-rope or
+// self-contact), which shows what rope-rope pairs in Bullet's broadphase cost.
 void BM_RopesOnGround(benchmark::State& state) {
   const int count = static_cast<int>(state.range(0));
+  rope::bullet::BulletRopeSettings bridge;
+  if (state.range(1) == 0) bridge.collisionMask = ~bridge.collisionGroup;
   World w;
   w.addStatic(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0), btVector3(0, 0, 0));
   for (int i = 0; i < count; ++i) {
     const double z = 0.05 * (i - 0.5 * count);
     w.ropeObjects.push_back(std::make_unique<RopeObject>(
-        Rod::fromSegment(ropeSettings(16, 1.0), Vec3(-0.5, 0.0105, z), Vec3(0.5, 0.0105, z))));
+        Rod::fromSegment(ropeSettings(16, 1.0), Vec3(-0.5, 0.0105, z), Vec3(0.5, 0.0105, z)), bridge));
     w.ropes->addRope(*w.ropeObjects.back());
   }
   for (int i = 0; i < 120; ++i) w.world.stepSimulation(btScalar(kStep), 1, btScalar(kStep));  // settle
   runSteps(state, w);
   state.counters["ropes"] = count;
 }
-BENCHMARK(BM_RopesOnGround)->Arg(1)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RopesOnGround)
+    ->ArgsProduct({{1, 10, 100}, {1, 0}})
+    ->ArgNames({"ropes", "rope_rope"})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -1,17 +1,11 @@
 #include "bullet_bridge/capsule_proxies.h"
 
-#include <BulletCollision/CollisionShapes/btEmptyShape.h>
-
 #include <algorithm>
 #include <cmath>
 
 namespace rope::bullet {
 
 namespace {
-
-// userIndex2 of every rope capsule: tells rope capsules from the user's objects (userPointer is the
-// RopeObject, userIndex the capsule index).
-constexpr int kRopeCapsuleTag = 0x526f7065;  // "Rope"
 
 // Bullet's btCollisionWorld::updateSingleAabb disables objects whose box diagonal^2 reaches 1e12.
 constexpr double kBulletAabbLimit2 = 1e12;
@@ -21,21 +15,6 @@ btVector3 toBullet(const Vec3& v) {
 }
 
 }  // namespace
-
-// An axis-aligned box around the object's origin. Its shape type stays EMPTY_SHAPE_PROXYTYPE, for
-// which Bullet's collision configurations create no contact-generating algorithm (and whose
-// processAllTriangles yields nothing, so Bullet's own ray and contact tests ignore it).
-class SweptBoxShape : public btEmptyShape {
- public:
-  void setHalfExtents(const btVector3& half) { half_ = half; }
-  void getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const override {
-    aabbMin = t.getOrigin() - half_;
-    aabbMax = t.getOrigin() + half_;
-  }
-
- private:
-  btVector3 half_{0, 0, 0};
-};
 
 CapsuleProxies::CapsuleProxies(RopeObject& owner, int capsulesPerSpan, double radius)
     : owner_(owner), capsulesPerSpan_(capsulesPerSpan), radius_(static_cast<btScalar>(radius)) {}

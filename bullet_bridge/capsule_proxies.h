@@ -16,12 +16,16 @@
 
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/capsule.h"
+#include "bullet_bridge/swept_box_shape.h"
 #include "rope/rod/rod.h"
 
 namespace rope::bullet {
 
 class RopeObject;
-class SweptBoxShape;
+
+// userIndex2 of every dynamic rope capsule: tells rope capsules from the user's objects (userPointer is
+// the RopeObject, userIndex the capsule index).
+constexpr int kRopeCapsuleTag = 0x526f7065;  // "Rope"
 
 struct CapsuleProxy {
   double s0 = 0.0, s1 = 0.0;                  // curve parameters of the capsule's axis ends

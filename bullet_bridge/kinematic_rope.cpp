@@ -1,7 +1,6 @@
 #include "bullet_bridge/kinematic_rope.h"
 
 #include <BulletCollision/BroadphaseCollision/btBroadphaseInterface.h>
-#include <BulletCollision/CollisionShapes/btEmptyShape.h>
 #include <LinearMath/btIDebugDraw.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <string>
 #include <tuple>
 
+#include "bullet_bridge/capsule_proxies.h"  // kRopeCapsuleTag: dynamic rope capsules are not bodies to push
 #include "bullet_bridge/find_contacts.h"
 #include "bullet_bridge/kinematic_push.h"
 #include "rope/common/error.h"
@@ -19,8 +19,6 @@ namespace rope::bullet {
 
 namespace {
 
-// userIndex2 of the dynamic ropes' capsules (capsule_proxies.cpp): they are not bodies to push.
-constexpr int kDynamicRopeTag = 0x526f7065;
 // Bullet's btCollisionWorld::updateSingleAabb disables objects whose box diagonal^2 reaches 1e12.
 constexpr double kBulletAabbLimit2 = 1e12;
 
@@ -49,7 +47,7 @@ void requireTarget(const char* name, const btVector3& p) {
 btRigidBody* pushableBody(const btBroadphaseProxy& proxy, int group, int mask, const btRigidBody* followed) {
   auto* object = static_cast<btCollisionObject*>(proxy.m_clientObject);
   if (object == nullptr) return nullptr;
-  if (object->getUserIndex2() == kKinematicRopeTag || object->getUserIndex2() == kDynamicRopeTag) return nullptr;
+  if (object->getUserIndex2() == kKinematicRopeTag || object->getUserIndex2() == kRopeCapsuleTag) return nullptr;
   if (!object->hasContactResponse()) return nullptr;
   if ((proxy.m_collisionFilterGroup & mask) == 0 || (group & proxy.m_collisionFilterMask) == 0) return nullptr;
   btRigidBody* body = btRigidBody::upcast(object);
@@ -77,20 +75,6 @@ class KinematicRope::Action : public btActionInterface {
   KinematicRope& owner_;
 };
 
-// An axis-aligned box around the object's origin whose shape type stays EMPTY_SHAPE_PROXYTYPE: Bullet's
-// collision configurations create no contact algorithm for it and its own ray and contact tests
-// ignore it (the same device as capsule_proxies.cpp's swept boxes).
-class KinematicRope::BoxShape : public btEmptyShape {
- public:
-  void setHalfExtents(const btVector3& half) { half_ = half; }
-  void getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const override {
-    aabbMin = t.getOrigin() - half_;
-    aabbMax = t.getOrigin() + half_;
-  }
-
- private:
-  btVector3 half_{0, 0, 0};
-};
 
 KinematicRope::KinematicRope(TractrixRope rope, const KinematicRopeSettings& settings)
     : rope_([&] {
@@ -272,7 +256,7 @@ void KinematicRope::rebuildCapsules(bool swept) {
     shapes_.pop_back();
   }
   while (objects_.size() < count) {
-    shapes_.push_back(std::make_unique<BoxShape>());
+    shapes_.push_back(std::make_unique<SweptBoxShape>());
     auto object = std::make_unique<btCollisionObject>();
     object->setCollisionShape(shapes_.back().get());
     object->setCollisionFlags(object->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |

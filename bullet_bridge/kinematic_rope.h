@@ -37,6 +37,7 @@
 #include "bullet_bridge/contact.h"
 #include "bullet_bridge/kinematic_push.h"
 #include "bullet_bridge/kinematic_rope_settings.h"
+#include "bullet_bridge/swept_box_shape.h"
 #include "rope/tractrix/tractrix_rope.h"
 
 namespace rope::bullet {
@@ -120,7 +121,6 @@ class KinematicRope {
 
  private:
   class Action;
-  class BoxShape;
   struct Candidate {
     int worldIndex;
     int capsule;
@@ -154,7 +154,7 @@ class KinematicRope {
   std::vector<btVector3> axis_;           // capsule end points now
   std::vector<btVector3> previousAxis_;   // the same parameters on the previous curve
   std::vector<btScalar> bulge_;           // per capsule: the curve's distance from its chord midpoint
-  std::vector<std::unique_ptr<BoxShape>> shapes_;
+  std::vector<std::unique_ptr<SweptBoxShape>> shapes_;
   std::vector<std::unique_ptr<btCollisionObject>> objects_;
   std::vector<Candidate> candidates_;
   std::vector<Contact> scratch_;

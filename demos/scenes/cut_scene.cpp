@@ -55,16 +55,11 @@ StepMeasurements CutScene::step() {
     const Rod& rod = upper_->rod();
     lower_ = upper_->cut(rod.beginParameter() + settings_.cutFraction * (rod.endParameter() - rod.beginParameter()));
   }
-  const btScalar h = static_cast<btScalar>(settings_.timeStep);
-  physics_.world().stepSimulation(h, 1, h);
+  const StepMeasurements counts = stepAndCheck(physics_, settings_.timeStep, "cut");
   time_ += settings_.timeStep;
   StepMeasurements measurements = measure();
-  for (const bullet::RopeObject* rope : {upper_.get(), lower_.get()}) {
-    if (rope == nullptr) continue;
-    if (!rope->lastStep().ok) throw std::runtime_error(std::string("cut: rope step failed: ") + rope->lastStep().failure);
-    measurements.insertions += rope->lastStep().insertions;
-    measurements.removals += rope->lastStep().removals;
-  }
+  measurements.insertions = counts.insertions;
+  measurements.removals = counts.removals;
   return measurements;
 }
 

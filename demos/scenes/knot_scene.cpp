@@ -164,16 +164,11 @@ void KnotScene::moveGrippers(double h) {
 
 StepMeasurements KnotScene::step() {
   moveGrippers(settings_.timeStep);
-  const btScalar h = static_cast<btScalar>(settings_.timeStep);
-  physics_.world().stepSimulation(h, 1, h);
+  const StepMeasurements counts = stepAndCheck(physics_, settings_.timeStep, "knot");
   time_ += settings_.timeStep;
-  const bullet::ContactReport& report = physics_.ropes().lastReport();
-  const bullet::RopeStepRecord& record = rope_->lastStep();
-  if (!record.ok) throw std::runtime_error(std::string("knot: rope step failed: ") + record.failure);
-  if (*report.ropeContactFailure != '\0') throw std::runtime_error(std::string("knot: ") + report.ropeContactFailure);
   StepMeasurements measurements = measure();
-  measurements.insertions = record.insertions;
-  measurements.removals = record.removals;
+  measurements.insertions = counts.insertions;
+  measurements.removals = counts.removals;
   return measurements;
 }
 

@@ -1,6 +1,8 @@
 #include "demos/scenes/physics_world.h"
 
 #include "bullet_bridge/capsule_proxies.h"
+
+#include <stdexcept>
 #include "render/rope_drawing.h"
 #include "render/world_extraction.h"
 
@@ -55,6 +57,19 @@ void PhysicsWorld::draw(render::Scene& scene) const {
   render::ExtractionOptions options;
   options.skip = [](const btCollisionObject& object) { return bullet::CapsuleProxies::ropeOf(object) != nullptr; };
   render::extractWorld(*world_, meshes_, scene, options);
+}
+
+StepMeasurements stepAndCheck(PhysicsWorld& physics, double h, const std::string& scene) {
+  physics.world().stepSimulation(static_cast<btScalar>(h), 1, static_cast<btScalar>(h));
+  const bullet::ContactReport& report = physics.ropes().lastReport();
+  StepMeasurements counts;
+  for (const bullet::RopeStepRecord& rope : report.ropes) {
+    if (!rope.ok) throw std::runtime_error(scene + ": rope step failed: " + rope.failure);
+    counts.insertions += rope.insertions;
+    counts.removals += rope.removals;
+  }
+  if (*report.ropeContactFailure != '\0') throw std::runtime_error(scene + ": " + report.ropeContactFailure);
+  return counts;
 }
 
 void drawRope(render::Scene& scene, const bullet::RopeObject& rope, bool showControlPolygon) {

@@ -6,9 +6,11 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "bullet_bridge/rope_world.h"
+#include "demos/scenes/demo_scene.h"
 #include "render/scene.h"
 #include "render/shape_mesh_cache.h"
 
@@ -46,6 +48,11 @@ class PhysicsWorld {
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
   mutable render::ShapeMeshCache meshes_;
 };
+
+// Advances the world by one fixed step h (s) and checks every rope of its RopeWorld: throws
+// std::runtime_error starting with `scene` if a rope's step or the coupled rope-rope solve failed.
+// Returns the knots the ropes' adaptivity inserted and removed in that step (the other fields unset).
+StepMeasurements stepAndCheck(PhysicsWorld& physics, double h, const std::string& scene);
 
 // A rope's drawing style in the Bullet scenes: the tube of the rope's radius, spans in alternating
 // colours, and optionally its control polygon as a thin overlay (as [A]'s knot-tying figure shows it,

@@ -69,6 +69,7 @@ StepMeasurements CraneScene::measure() const {
   measurements.controlPoints = rope_->rod().controlPointCount();
   measurements.maxStrain = rope_->rod().maxStrain();
   measurements.maxPenetration = rope_->lastStep().maxPenetration;
+  measurements.maxSelfOverlap = physics_.ropes().lastReport().maxSelfOverlap();
   measurements.series = {{"box_y_m", static_cast<double>(box_->getCenterOfMassPosition().y())},
                          {"attachment_gap_m", attachmentGap()},
                          {"expected_strain", expectedStrain()}};

@@ -86,6 +86,7 @@ StepMeasurements DrapeScene::measure() const {
   measurements.controlPoints = rope_->rod().controlPointCount();
   measurements.maxStrain = rope_->rod().maxStrain();
   measurements.maxPenetration = rope_->lastStep().maxPenetration;
+  measurements.maxSelfOverlap = physics_.ropes().lastReport().maxSelfOverlap();
   measurements.series = {{"contacts", static_cast<double>(rope_->lastStep().contacts)}, {"lowest_m", lowestPoint()}};
   return measurements;
 }

@@ -65,11 +65,7 @@ StepMeasurements CraneScene::step() {
 }
 
 StepMeasurements CraneScene::measure() const {
-  StepMeasurements measurements;
-  measurements.controlPoints = rope_->rod().controlPointCount();
-  measurements.maxStrain = rope_->rod().maxStrain();
-  measurements.maxPenetration = rope_->lastStep().maxPenetration;
-  measurements.maxSelfOverlap = physics_.ropes().lastReport().maxSelfOverlap();
+  StepMeasurements measurements = ropeMeasurements(physics_, *rope_);
   measurements.series = {{"box_y_m", static_cast<double>(box_->getCenterOfMassPosition().y())},
                          {"attachment_gap_m", attachmentGap()},
                          {"expected_strain", expectedStrain()}};

@@ -82,11 +82,7 @@ StepMeasurements DrapeScene::step() {
 }
 
 StepMeasurements DrapeScene::measure() const {
-  StepMeasurements measurements;
-  measurements.controlPoints = rope_->rod().controlPointCount();
-  measurements.maxStrain = rope_->rod().maxStrain();
-  measurements.maxPenetration = rope_->lastStep().maxPenetration;
-  measurements.maxSelfOverlap = physics_.ropes().lastReport().maxSelfOverlap();
+  StepMeasurements measurements = ropeMeasurements(physics_, *rope_);
   measurements.series = {{"contacts", static_cast<double>(rope_->lastStep().contacts)}, {"lowest_m", lowestPoint()}};
   return measurements;
 }

@@ -173,12 +173,8 @@ StepMeasurements KnotScene::step() {
 }
 
 StepMeasurements KnotScene::measure() const {
-  StepMeasurements measurements;
   const Rod& rod = rope_->rod();
-  measurements.controlPoints = rod.controlPointCount();
-  measurements.maxStrain = rod.maxStrain();
-  measurements.maxPenetration = rope_->lastStep().maxPenetration;
-  measurements.maxSelfOverlap = physics_.ropes().lastReport().maxSelfOverlap();
+  StepMeasurements measurements = ropeMeasurements(physics_, *rope_);
   const KnotRegion region = knot();
   measurements.series = {{"knot_length_m", region.length},
                          {"knot_extent_m", region.extent},

@@ -72,6 +72,15 @@ StepMeasurements stepAndCheck(PhysicsWorld& physics, double h, const std::string
   return counts;
 }
 
+StepMeasurements ropeMeasurements(const PhysicsWorld& physics, const bullet::RopeObject& rope) {
+  StepMeasurements measurements;
+  measurements.controlPoints = rope.rod().controlPointCount();
+  measurements.maxStrain = rope.rod().maxStrain();
+  measurements.maxPenetration = rope.lastStep().maxPenetration;
+  measurements.maxSelfOverlap = physics.ropes().lastReport().maxSelfOverlap();
+  return measurements;
+}
+
 void drawRope(render::Scene& scene, const bullet::RopeObject& rope, bool showControlPolygon) {
   render::RopeStyle style;
   style.tube.radius = rope.rod().settings().radius;

@@ -54,6 +54,10 @@ class PhysicsWorld {
 // Returns the knots the ropes' adaptivity inserted and removed in that step (the other fields unset).
 StepMeasurements stepAndCheck(PhysicsWorld& physics, double h, const std::string& scene);
 
+// What every rope scene measures of a rope: control points, strain, its deepest penetration into
+// bodies and the deepest rope-rope overlap of the world's last substep.
+StepMeasurements ropeMeasurements(const PhysicsWorld& physics, const bullet::RopeObject& rope);
+
 // A rope's drawing style in the Bullet scenes: the tube of the rope's radius, spans in alternating
 // colours, and optionally its control polygon as a thin overlay (as [A]'s knot-tying figure shows it,
 // so the adaptivity is visible).

@@ -91,12 +91,8 @@ StepMeasurements PileScene::step() {
 }
 
 StepMeasurements PileScene::measure() const {
-  StepMeasurements measurements;
   const Rod& rod = rope_->rod();
-  measurements.controlPoints = rod.controlPointCount();
-  measurements.maxStrain = rod.maxStrain();
-  measurements.maxPenetration = rope_->lastStep().maxPenetration;
-  measurements.maxSelfOverlap = physics_.ropes().lastReport().maxSelfOverlap();
+  StepMeasurements measurements = ropeMeasurements(physics_, *rope_);
   measurements.series = {{"self_contacts", static_cast<double>(rope_->lastStep().ropeContacts)},
                          {"ground_contacts", static_cast<double>(rope_->lastStep().contacts)},
                          {"heap_height_m", heapHeight()},

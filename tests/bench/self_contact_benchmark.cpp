@@ -36,11 +36,11 @@ void report(benchmark::State& state, const Shares& shares, double stepsPerIterat
   state.counters["steps"] = stepsPerIteration;
 }
 
-// The knot held tight by the grippers (after 3 s of pulling), one simulated second per iteration.
-void BM_KnotHeldTight(benchmark::State& state) {
-  rope::demos::KnotScene scene(rope::demos::KnotSceneSettings{});
+// Steps `scene` for `warmUp` simulated seconds untimed, then one simulated second per iteration.
+template <typename SceneType>
+void simulatedSeconds(benchmark::State& state, SceneType& scene, double warmUp) {
   const int perSecond = static_cast<int>(std::lround(1.0 / scene.timeStep()));
-  for (int i = 0; i < 3 * perSecond; ++i) scene.step();
+  for (int i = 0; i < static_cast<int>(std::lround(warmUp * perSecond)); ++i) scene.step();
   Shares shares;
   record(scene.physics(), shares);
   for (auto _ : state) {
@@ -48,6 +48,12 @@ void BM_KnotHeldTight(benchmark::State& state) {
   }
   report(state, shares, perSecond);
   state.counters["control_points"] = scene.rope().rod().controlPointCount();
+}
+
+// The knot held tight by the grippers (after 3 s of pulling), one simulated second per iteration.
+void BM_KnotHeldTight(benchmark::State& state) {
+  rope::demos::KnotScene scene(rope::demos::KnotSceneSettings{});
+  simulatedSeconds(state, scene, 3.0);
 }
 BENCHMARK(BM_KnotHeldTight)->Unit(benchmark::kMillisecond)->Iterations(3);
 
@@ -72,15 +78,7 @@ BENCHMARK(BM_KnotTightening)->Unit(benchmark::kMillisecond)->Iterations(2);
 // The 2 m pile once it has landed (after 1 s), one simulated second per iteration.
 void BM_PileResting(benchmark::State& state) {
   rope::demos::PileScene scene(rope::demos::PileSceneSettings{});
-  const int perSecond = static_cast<int>(std::lround(1.0 / scene.timeStep()));
-  for (int i = 0; i < perSecond; ++i) scene.step();
-  Shares shares;
-  record(scene.physics(), shares);
-  for (auto _ : state) {
-    for (int i = 0; i < perSecond; ++i) scene.step();
-  }
-  report(state, shares, perSecond);
-  state.counters["control_points"] = scene.rope().rod().controlPointCount();
+  simulatedSeconds(state, scene, 1.0);
 }
 BENCHMARK(BM_PileResting)->Unit(benchmark::kMillisecond)->Iterations(3);
 

@@ -64,17 +64,22 @@ struct TwoRods {
       laws.push_back(law);
     }
   }
+  // Solves both trials and the couplings' impulses; the caller applies them.
+  static constexpr double kStep = 1.0 / 240.0;
+  ::testing::AssertionResult solve(CoupledSolve& solver, std::vector<Vec3>& impulses) {
+    if (!a.solveTrial(kStep).ok || !b.solveTrial(kStep).ok) return ::testing::AssertionFailure() << "trial failed";
+    solver.prepare({&a, &b}, couplings);
+    if (!solver.solveImpulses(laws, impulses)) return ::testing::AssertionFailure() << "impulses failed";
+    return ::testing::AssertionSuccess();
+  }
 };
 
 TEST(CoupledSolve, CorrectionIsExactlyTheResponseToTheImpulses) {
   TwoRods setup;
-  const double h = 1.0 / 240.0;
-  ASSERT_TRUE(setup.a.solveTrial(h).ok);
-  ASSERT_TRUE(setup.b.solveTrial(h).ok);
+  const double h = TwoRods::kStep;
   CoupledSolve solve;
-  solve.prepare({&setup.a, &setup.b}, setup.couplings);
   std::vector<Vec3> impulses;
-  ASSERT_TRUE(solve.solveImpulses(setup.laws, impulses));
+  ASSERT_TRUE(setup.solve(solve, impulses));
   solve.apply(impulses);
 
   // The same impulses given to the rods as ordinary loads, solved directly: identical end state.
@@ -96,13 +101,10 @@ TEST(CoupledSolve, CorrectionIsExactlyTheResponseToTheImpulses) {
 
 TEST(CoupledSolve, ImpulsesSatisfyTheirLawAtTheEndOfTheStep) {
   TwoRods setup;
-  const double h = 1.0 / 240.0;
-  ASSERT_TRUE(setup.a.solveTrial(h).ok);
-  ASSERT_TRUE(setup.b.solveTrial(h).ok);
+  const double h = TwoRods::kStep;
   CoupledSolve solve;
-  solve.prepare({&setup.a, &setup.b}, setup.couplings);
   std::vector<Vec3> impulses;
-  ASSERT_TRUE(solve.solveImpulses(setup.laws, impulses));
+  ASSERT_TRUE(setup.solve(solve, impulses));
   std::vector<Vec3> predicted;
   for (int k = 0; k < solve.size(); ++k) predicted.push_back(solve.relativeChange(k, impulses));
   solve.apply(impulses);

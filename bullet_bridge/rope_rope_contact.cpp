@@ -63,7 +63,6 @@ ContactLaw pairLaw(const BulletRopeSettings& a, const BulletRopeSettings& b) {
 
 }  // namespace
 
-
 int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs,
                             double h, std::vector<RopePairContactRecord>& records) {
   candidates_.clear();
@@ -75,6 +74,8 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     const CapsuleProxies& proxies = ropes[r]->proxies();
     buildRestArc(rod, restArc_[r]);
     std::vector<CapsuleEnd>& ends = ends_[r];
+    ends.clear();
+    if (proxies.size() == 0) continue;  // no pair can name one of its capsules
     ends.resize(static_cast<size_t>(proxies.size()) + 1);
     for (int i = 0; i <= proxies.size(); ++i) {
       const double s = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;

@@ -23,27 +23,29 @@ void requireParameterOn(const Rod& rod, const std::string& name, double s) {
 }  // namespace
 
 int CoupledSolve::pointIndex(int rod, double s) {
-  for (size_t p = 0; p < points_.size(); ++p) {
-    if (points_[p].rod == rod && points_[p].s == s) return static_cast<int>(p);
+  for (int p = 0; p < pointCount_; ++p) {
+    if (points_[static_cast<size_t>(p)].rod == rod && points_[static_cast<size_t>(p)].s == s) return p;
   }
-  const Rod& owner = *rods_[static_cast<size_t>(rod)];
-  Point point;
+  // Reuse a slot (and its response buffer) from an earlier step: no allocation in a steady state.
+  if (pointCount_ == static_cast<int>(points_.size())) points_.emplace_back();
+  Point& point = points_[static_cast<size_t>(pointCount_)];
   point.rod = rod;
   point.s = s;
-  const KnotVector& knots = owner.knots();
+  point.hasResponse = false;
+  const KnotVector& knots = rods_[static_cast<size_t>(rod)]->knots();
   const int k = knots.findSpan(s);
   BasisValues basis;
   evaluateBasis(knots, k, s, 0, basis);
   point.first = k - knots.degree();
   point.count = knots.degree() + 1;
   for (int a = 0; a < point.count; ++a) point.basis[a] = basis.d[0][static_cast<size_t>(a)];
-  points_.push_back(std::move(point));
-  return static_cast<int>(points_.size()) - 1;
+  return pointCount_++;
 }
 
 void CoupledSolve::ensureResponse(int p) {
   Point& point = points_[static_cast<size_t>(p)];
-  if (!point.response.empty()) return;
+  if (point.hasResponse) return;
+  point.hasResponse = true;
   const Rod& owner = *rods_[static_cast<size_t>(point.rod)];
   const int n3 = 3 * owner.controlPointCount();
   point.response.resize(static_cast<size_t>(3 * n3));
@@ -94,7 +96,7 @@ void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<Poin
 
   rods_ = rods;
   couplings_ = couplings;
-  points_.clear();
+  pointCount_ = 0;
   const size_t m = couplings.size();
   pointA_.resize(m);
   pointB_.resize(m);

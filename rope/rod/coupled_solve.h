@@ -73,7 +73,8 @@ class CoupledSolve {
     int first;              // first control point with b_i(s) != 0
     double basis[kMaxDegree + 1];
     int count;
-    std::vector<double> response;  // 3 columns of 3n (unit impulse along x, y, z); empty until needed
+    bool hasResponse;
+    std::vector<double> response;  // 3 columns of 3n (unit impulse along x, y, z), once needed
   };
   int pointIndex(int rod, double s);
   void ensureResponse(int p);
@@ -82,7 +83,8 @@ class CoupledSolve {
 
   std::vector<Rod*> rods_;
   std::vector<PointCoupling> couplings_;
-  std::vector<Point> points_;
+  std::vector<Point> points_;  // the first pointCount_ are in use; the rest keep their buffers
+  int pointCount_ = 0;
   std::vector<int> pointA_, pointB_;  // per coupling
   std::vector<Vec3> trialChange_;
   std::vector<int> acting_;  // couplings with a non-zero law in the last solveImpulses

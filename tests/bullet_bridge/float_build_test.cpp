@@ -1,7 +1,8 @@
 // Scenario test that builds in both Bullet precisions (it needs no scene builders, so the float
 // build of tests/bullet_bridge/float_build_check.cmake compiles only the rope and the bridge): a rope
-// dropped onto a box comes to rest on it, and a rope hitting a free box conserves momentum (to
-// btScalar round-off: Bullet keeps the box's velocity in btScalar).
+// dropped onto a box comes to rest on it, a rope hitting a free box conserves momentum (to btScalar
+// round-off: Bullet keeps the box's velocity in btScalar), and a rope dropped across another one on
+// the box comes to rest on it (rope-rope contact through the same broadphase).
 #include <gtest/gtest.h>
 
 #include <btBulletDynamicsCommon.h>
@@ -95,6 +96,30 @@ TEST(FloatBuildScenario, RopeAndFreeBoxConserveMomentum) {
   // Exact in double; float Bullet rounds the box's velocity to ~1e-7 relative per impulse.
   EXPECT_LT(worst, sizeof(btScalar) == sizeof(double) ? 1e-9 : 1e-4);
   std::printf("btScalar %zu bytes: momentum drift %.3g\n", sizeof(btScalar), worst);
+}
+
+TEST(FloatBuildScenario, RopeDroppedAcrossAnotherRestsOnIt) {
+  World w(9.81, 0.0);
+  RopeWorld ropes(w.world);
+  const double r = rope(true).radius;
+  RopeObject lower(Rod::fromSegment(rope(true), Vec3(-0.5, 0.2 + r, 0), Vec3(0.5, 0.2 + r, 0)));
+  RopeObject upper(Rod::fromSegment(rope(true), Vec3(0, 0.3, -0.5), Vec3(0, 0.3, 0.5)));
+  ropes.addRope(lower);
+  ropes.addRope(upper);
+  double worst = 0.0;
+  int touching = 0;
+  for (int i = 0; i < 480; ++i) {
+    w.world.stepSimulation(btScalar(kStep), 1, btScalar(kStep));
+    ASSERT_TRUE(lower.lastStep().ok && upper.lastStep().ok);
+    worst = std::max(worst, ropes.lastReport().maxSelfOverlap());
+    touching += upper.lastStep().ropeContacts > 0 ? 1 : 0;
+  }
+  EXPECT_LT(worst, 0.2 * 2.0 * r);
+  EXPECT_GT(touching, 100);
+  // Resting across the lower rope: its middle one diameter above the lower rope's centre line.
+  const Rod& rod = upper.rod();
+  EXPECT_NEAR(rod.position(0.5 * (rod.beginParameter() + rod.endParameter())).y(), 0.2 + 3.0 * r, 0.15 * 2.0 * r);
+  std::printf("btScalar %zu bytes: rope-rope overlap %.3g m\n", sizeof(btScalar), worst);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/Eigenvalues>
+
 #include "rope/common/error.h"
 #include "rope/spline/bspline_basis.h"
 
@@ -129,24 +131,42 @@ bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vect
   }
   const int a = static_cast<int>(acting_.size());
   if (a == 0) return true;
-  // (I + W Z) p = e - W J dv_trial over the acting couplings only.
-  system_.setIdentity(3 * a, 3 * a);
-  rhs_.resize(3 * a);
+  // (I + W Z) p = e - W c over the acting couplings (c = J dv_trial), solved in its symmetric form:
+  // with W = L L^T per coupling (L = V sqrt(Lambda) from W's eigenvectors; W is PSD),
+  //   (I + L^T Z L) u = L^T (c + Z e),   p = e - L u,
+  // whose matrix is symmetric positive definite (Z = J P J^T is PSD), so a Cholesky factor half the
+  // cost of an LU suffices and cannot meet a zero pivot.
+  roots_.resize(static_cast<size_t>(a));
+  zActing_.resize(3 * a, 3 * a);
+  impulse_.resize(3 * a);
   for (int i = 0; i < a; ++i) {
     const size_t k = static_cast<size_t>(acting_[static_cast<size_t>(i)]);
-    const Eigen::Matrix3d& w = laws[k].admittance;
-    for (int j = 0; j < a; ++j) {
-      system_.block<3, 3>(3 * i, 3 * j) += w * zBlock(k, static_cast<size_t>(acting_[static_cast<size_t>(j)]));
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (laws[k].admittance + laws[k].admittance.transpose()));
+    roots_[static_cast<size_t>(i)] =
+        eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+    impulse_.segment<3>(3 * i) = laws[k].impulse;
+    for (int j = 0; j <= i; ++j) {
+      const Eigen::Matrix3d block = zBlock(k, static_cast<size_t>(acting_[static_cast<size_t>(j)]));
+      zActing_.block<3, 3>(3 * i, 3 * j) = block;
+      zActing_.block<3, 3>(3 * j, 3 * i) = block.transpose();
     }
-    rhs_.segment<3>(3 * i) = laws[k].impulse - w * trialChange_[k];
   }
-  lu_.compute(system_);
-  const Eigen::VectorXd p = lu_.solve(rhs_);
-  if (!p.allFinite()) return false;
-  // I + W Z is similar to I + W^1/2 Z W^1/2 (eigenvalues >= 1): a residual far above round-off means
-  // the factorisation broke down, not that the system is ill-posed.
-  const double residual = (system_ * p - rhs_).norm();
-  if (!(residual <= 1e-8 * (rhs_.norm() + system_.norm() * p.norm()) + 1e-300)) return false;
+  system_.setIdentity(3 * a, 3 * a);
+  rhs_.noalias() = zActing_ * impulse_;
+  for (int i = 0; i < a; ++i) {
+    const size_t k = static_cast<size_t>(acting_[static_cast<size_t>(i)]);
+    const Eigen::Matrix3d& li = roots_[static_cast<size_t>(i)];
+    rhs_.segment<3>(3 * i) = li.transpose() * (trialChange_[k] + rhs_.segment<3>(3 * i));
+    for (int j = 0; j <= i; ++j) {
+      system_.block<3, 3>(3 * i, 3 * j) += li.transpose() * zActing_.block<3, 3>(3 * i, 3 * j) * roots_[static_cast<size_t>(j)];
+    }
+  }
+  llt_.compute(system_);  // reads the lower triangle
+  if (llt_.info() != Eigen::Success) return false;
+  const Eigen::VectorXd u = llt_.solve(rhs_);
+  if (!u.allFinite()) return false;
+  Eigen::VectorXd p = impulse_;
+  for (int i = 0; i < a; ++i) p.segment<3>(3 * i) -= roots_[static_cast<size_t>(i)] * u.segment<3>(3 * i);
   for (int i = 0; i < a; ++i) impulses[static_cast<size_t>(acting_[static_cast<size_t>(i)])] = p.segment<3>(3 * i);
   return true;
 }

@@ -14,7 +14,8 @@
 // by the Woodbury identity against the rods' existing factors: with P the pinned inverse of each A
 // (Rod::trialImpulseResponse) and Z = J P J^T (3m x 3m),
 //   (I + W Z) p = e - W J dv_trial,   dv = dv_trial + P J^T p.
-// Only the couplings that act (a non-zero law) enter the dense solve, and only their points need
+// The small system is solved in its symmetric positive definite form (Cholesky; see
+// solveImpulses). Only the couplings that act (a non-zero law) enter the dense solve, and only their points need
 // responses, computed when a coupling first acts: a candidate with a zero law has p = 0 exactly, yet
 // relativeChange() still predicts its motion (so an active set can switch it on). Cost: 3 O(n) solves
 // per acting coupling point, O(m a) for the predictions and O(a^3) for the dense solve (a acting
@@ -24,7 +25,7 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
+#include <Eigen/Cholesky>
 
 #include "rope/common/types.h"
 #include "rope/rod/rod.h"
@@ -88,9 +89,11 @@ class CoupledSolve {
   std::vector<int> pointA_, pointB_;  // per coupling
   std::vector<Vec3> trialChange_;
   std::vector<int> acting_;  // couplings with a non-zero law in the last solveImpulses
-  Eigen::MatrixXd system_;
-  Eigen::VectorXd rhs_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  Eigen::MatrixXd system_;   // I + L^T Z L over the acting couplings (lower triangle)
+  Eigen::MatrixXd zActing_;  // Z over the acting couplings
+  Eigen::VectorXd rhs_, impulse_;
+  std::vector<Eigen::Matrix3d> roots_;  // L with W = L L^T, per acting coupling
+  Eigen::LLT<Eigen::MatrixXd> llt_;
   std::vector<double> correction_;
 };
 

@@ -1,6 +1,7 @@
 #include "demos/scenes/physics_world.h"
 
 #include "bullet_bridge/capsule_proxies.h"
+#include "bullet_bridge/kinematic_rope.h"
 
 #include <stdexcept>
 #include "render/rope_drawing.h"
@@ -55,7 +56,9 @@ btRigidBody* PhysicsWorld::addGround(double height) {
 
 void PhysicsWorld::draw(render::Scene& scene) const {
   render::ExtractionOptions options;
-  options.skip = [](const btCollisionObject& object) { return bullet::CapsuleProxies::ropeOf(object) != nullptr; };
+  options.skip = [](const btCollisionObject& object) {
+    return bullet::CapsuleProxies::ropeOf(object) != nullptr || bullet::KinematicRope::ropeOf(object) != nullptr;
+  };
   render::extractWorld(*world_, meshes_, scene, options);
 }
 

@@ -34,7 +34,7 @@ class PhysicsWorld {
   // The static ground plane y = height.
   btRigidBody* addGround(double height = 0.0);
 
-  // Draws the rigid bodies (planes as the ground), leaving out the ropes' capsules.
+  // Draws the rigid bodies (planes as the ground), leaving out the ropes' capsules (dynamic and kinematic).
   void draw(render::Scene& scene) const;
 
  private:

@@ -5,6 +5,7 @@
 #include "demos/scenes/hang_scene.h"
 #include "demos/scenes/knot_scene.h"
 #include "demos/scenes/pile_scene.h"
+#include "demos/scenes/sweep_scene.h"
 #include "demos/scenes/tractrix_scene.h"
 
 namespace rope::demos {
@@ -19,6 +20,8 @@ const std::vector<SceneEntry>& sceneCatalogue() {
        10.0, [] { return std::unique_ptr<DemoScene>(new HangScene(HangSceneSettings{})); }},
       {"pile", "Bullet world: a 2 m rope dropped as a loose coil from 0.5 m piles up on the ground (self-contact)",
        6.0, [] { return std::unique_ptr<DemoScene>(new PileScene(PileSceneSettings{})); }},
+      {"sweep", "Bullet world: a kinematic tractrix hose dragged in a circle through a field of boxes, pushing them aside",
+       6.0, [] { return std::unique_ptr<DemoScene>(new SweepScene(SweepSceneSettings{})); }},
       {"tractrix",
        "follow-the-leader: TRX with 20 segments beside TRX_SD_MRG on the same path",
        10.0, [] { return std::unique_ptr<DemoScene>(new TractrixScene(TractrixSceneSettings{})); }},

@@ -5,6 +5,12 @@
 
 namespace rope::compare {
 
+demos::HangSceneSettings CatenarySpec::flexible() {
+  demos::HangSceneSettings hang;
+  hang.rod.bendingStiffness = 0.0;
+  return hang;
+}
+
 double CatenarySpec::analyticSag() const { return demos::HangScene(hang).analyticSag(); }
 
 double CatenarySpec::pinDistance(double t) const {

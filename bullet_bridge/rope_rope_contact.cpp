@@ -207,7 +207,8 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
 
   // ---- implicit coupled response ----
   // Rods with a trial, and their index in the coupled solve (-1: the rope's step failed).
-  std::vector<int> rodIndex(ropes.size(), -1);
+  rodIndex_.assign(ropes.size(), -1);
+  std::vector<int>& rodIndex = rodIndex_;
   rods_.clear();
   for (size_t r = 0; r < ropes.size(); ++r) {
     if (!ropes[r]->rod().hasTrial()) continue;

@@ -69,6 +69,7 @@ class RopeRopeContacts {
   std::vector<int> coupled_;  // candidate index of each coupling
   std::vector<Vec3> impulses_;
   std::vector<Rod*> rods_;
+  std::vector<int> rodIndex_;  // per rope: its rod's index in rods_, -1 without a trial
   std::vector<std::vector<double>> restArc_;  // per rope: cumulative rest length at each span start
   struct CapsuleEnd {
     double arc;    // rest arclength, m

@@ -1,8 +1,7 @@
 #include "demos/scenes/cut_scene.h"
 
+#include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 #include "demos/scenes/crane_scene.h"
 #include "rope/common/error.h"

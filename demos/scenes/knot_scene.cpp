@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 #include "render/primitive_mesh.h"
 #include "rope/common/error.h"

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 #include "demos/scenes/knot_scene.h"
 #include "rope/common/error.h"

@@ -145,7 +145,6 @@ class Rod {
   // trial). Returns report.ok == false (with report.failure) on numerical failure.
   StepReport solveTrial(double h);
   bool hasTrial() const { return trialValid_; }
-  double trialStep() const { return trialStep_; }
   // End-of-step control-point velocities and the velocity field at s of the trial (throws
   // InvalidArgument("trial", ...) without one).
   const PointList& trialVelocities() const;

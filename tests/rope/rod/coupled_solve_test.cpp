@@ -249,6 +249,18 @@ TEST(RodSplitStep, TrialLeavesTheRodUnchangedAndChangesInvalidateIt) {
   EXPECT_THROW(rod.trialImpulseResponse(0.5, 3, response.data()), InvalidArgument);
   EXPECT_THROW(rod.trialImpulseResponse(2.0, 0, response.data()), InvalidArgument);
   EXPECT_THROW(rod.markInteraction(-1.0), InvalidArgument);
+  EXPECT_THROW(rod.trialVelocity(std::numeric_limits<double>::quiet_NaN()), InvalidArgument);
+  const auto expectH = [&rod](double h) {
+    try {
+      rod.solveTrial(h);
+      ADD_FAILURE() << "accepted h = " << h;
+    } catch (const InvalidArgument& e) {
+      EXPECT_EQ(e.parameter(), "h");
+    }
+  };
+  expectH(0.0);
+  expectH(-0.01);
+  expectH(std::numeric_limits<double>::quiet_NaN());
   rod.clearLoads();
   EXPECT_FALSE(rod.hasTrial());
   EXPECT_TRUE(test::sameState(before, test::RodSnapshot(rod)));

@@ -39,6 +39,10 @@ TEST(Rod, FromSegmentIsStraightWithTheRightMaterial) {
   EXPECT_NEAR(rod.mass(), 0.2, 1e-14);
   EXPECT_NEAR(rod.length(), 2.2, 1e-12);
   EXPECT_NEAR(rod.maxStrain(), 0.1, 1e-12);
+  EXPECT_NEAR(rod.strain(0.0), 0.1, 1e-12);  // uniform: the same at every s
+  EXPECT_NEAR(rod.strain(1.37), 0.1, 1e-12);
+  EXPECT_THROW(rod.strain(2.5), InvalidArgument);
+  EXPECT_THROW(rod.strain(kNaN), InvalidArgument);
   EXPECT_LT((rod.position(1.0) - Vec3(1.1, 1, 0)).norm(), 1e-14);
   EXPECT_LT((rod.tangent(0.3) - Vec3(1, 0, 0)).norm(), 1e-14);
   EXPECT_EQ(rod.velocity(0.5), Vec3::Zero());

@@ -61,6 +61,30 @@ bool contactActive(double distance, const Vec3& normal, const Vec3& ropeVelocity
 // (u) and after (uNew) the step.
 Vec3 endOfStepForce(const ContactSpring& spring, const Vec3& u, const Vec3& uNew, double h);
 
+// ---- line-contact samples (line_contact.h) ----
+// One sample of a rope-body line contact carries the normal law above with the sample's share of the
+// line law (stiffness = lineContactStiffness * weight, ...), and Coulomb friction with a stick state
+// instead of the regularised law:
+//  * sticking: a tangential spring of the same stiffness and damping to the sample's anchor a (the body
+//    point where it began to stick, friction_anchors.h), f_t = -k P_t (x_new - a_new) - c P_t w_new,
+//    with a_new = a + h v_b: implicit, so a rope held on a slope or around a post does not creep;
+//  * sliding: exactly mu f_n against the slip direction d, f_t = -mu f_n d(w_new), linearised about the
+//    slip speed |w_t| (implicit in the direction, D = mu f_n / |w_t| (P_t - d d^T), exact in magnitude),
+//    so a sliding rope feels Coulomb's force at every speed, not a viscous ramp up to it.
+// RopeObject's active set switches a sticking sample whose end-of-step spring force exceeds mu f_n to
+// sliding, in the direction of that force.
+struct SampleFriction {
+  bool sliding = false;
+  Vec3 displacement = Vec3::Zero();  // sticking: P_t (x - a) at the start of the step, m
+  Vec3 direction = Vec3::Zero();     // sliding: unit tangent, the rope's slip relative to the body
+  double speed = 1.0;                // sliding: slip speed the direction is linearised at, m/s, > 0
+  double normalForce = 0.0;          // sliding: the normal force bounding friction, N, >= 0
+};
+
+// law.friction is mu; law.frictionVelocity is not used (see SampleFriction).
+ContactSpring sampleSpring(const ContactLaw& law, double distance, const Vec3& normal, const Vec3& ropeVelocity,
+                           const Vec3& bodyVelocity, double h, const SampleFriction& friction);
+
 // Caps a stiffness (N/m) and damping (N s/m) acting on a body of effective mass 1 / inverseMass (kg)
 // to share * the explicit stability limits m / h^2 and m / h; inverseMass == 0 leaves them unchanged.
 void capForBody(double inverseMass, double h, double share, double& stiffness, double& damping);

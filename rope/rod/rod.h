@@ -27,7 +27,11 @@
 //       current state, K_c = -df/dx and D_c = -df/du (3x3, symmetric positive semidefinite for
 //       stability). It adds b_i(s) b_j(s) (h^2 K_c + h D_c) to the system and h b_i(s) (f0 - h K_c u)
 //       to the right-hand side, exactly like the rod's own stiffness: contact treated implicitly.
-// Interaction points (pins, forces, impulses, springs) also get a knot at s when adaptive.
+//   addSpringSample(s, f0, K_c, D_c)  the same, for one quadrature sample of a distributed load (a
+//       line contact, docs/method.md): it enters the system identically but is not an interaction
+//       point, so it does not ask adaptivity for a knot at s.
+// Interaction points (pins, forces, impulses, springs, markInteraction) also get a knot at s when
+// adaptive.
 
 #include <utility>
 #include <vector>
@@ -103,6 +107,9 @@ class Rod {
   double restLength() const;     // m
   double maxStrain() const;      // largest |C'|/l0' - 1 over the quadrature points
   double strain(double s) const; // |C'(s)|/l0'(s) - 1 (throws InvalidArgument("s", ...) like position)
+  // Rest length per unit parameter, dl0/ds = |C0'(s)| (1 for ropes created from a segment, whose
+  // parameter is the rest arclength). Throws InvalidArgument("s", ...) like position.
+  double restMetric(double s) const;
   double mass() const;           // kg
   Vec3 momentum() const;         // kg m/s
   double kineticEnergy() const;  // J, (1/2) v^T M v
@@ -132,6 +139,8 @@ class Rod {
   void addImpulse(double s, const Vec3& impulse);
   void addSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
                  const Eigen::Matrix3d& damping);
+  void addSpringSample(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
+                       const Eigen::Matrix3d& damping);
   void clearLoads();
 
   // One step of h seconds (finite, > 0, else InvalidArgument "h"): solveTrial(h), then commitTrial()
@@ -183,7 +192,10 @@ class Rod {
     Vec3 force;
     Eigen::Matrix3d stiffness;
     Eigen::Matrix3d damping;
+    bool interaction;  // false for a quadrature sample of a distributed load (no knot)
   };
+  void queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping,
+                   bool interaction);
 
   Rod(const RodSettings& settings, KnotVector knots, PointList points, PointList velocities,
       PointList rest, int gaussCount);

@@ -259,7 +259,7 @@ TEST(RopeWorld, BadInputThrowsAndChangesNothing) {
   EXPECT_THROW(rope.setAttachmentTarget(pin, btVector3(0, btScalar(nan), 0)), InvalidArgument);
   EXPECT_THROW(stranger.attachToBody(0.5, *inside, btVector3(0, 0, 0)), InvalidArgument);  // rope in no world
   BulletRopeSettings bad;
-  bad.contactStiffness = nan;
+  bad.lineContactStiffness = nan;
   EXPECT_THROW(RopeObject(Rod::fromSegment(limpRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)), bad), InvalidArgument);
   bad = BulletRopeSettings();
   bad.speculativeDamping = -1.0;

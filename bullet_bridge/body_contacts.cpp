@@ -281,7 +281,10 @@ void BodyContacts::finish(Rod& rod, double h, double concentratedContactRatio,
     // The anchor for the next substep, where the body will be after its next integration.
     const Vec3 xNew = rod.position(s) + h * uNew;
     const Vec3 bodyMotion = h * sample.bodyVelocity;
-    Vec3 anchorNew = xNew;  // sliding: a fresh anchor where the sample ends the step
+    // Sliding: an anchor that puts the spring at the friction force the sample ends the step with
+    // (x - a = -f_t / k), so a sample that sticks again keeps carrying its load instead of dropping
+    // it on its neighbours (which then slide in turn: a rope round a post crept at mm/s).
+    Vec3 anchorNew = xNew + tangential(force, sample.normal) / sample.law.stiffness;
     bool slides = false;
     if (!sample.friction.sliding) {
       // The anchor moved with the body; keep the spring within the friction cone.

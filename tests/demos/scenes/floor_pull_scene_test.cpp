@@ -10,7 +10,9 @@
 namespace rope::demos {
 namespace {
 
-constexpr double kCreepBound = 1.0e-3;  // m/s
+// m/s: sticking holds (measured creep <= 1e-7 m/s), far below the 1 mm/s a regularised friction
+// law at frictionVelocity = 1 mm/s creeps at, so this bound tells the two apart.
+constexpr double kCreepBound = 1.0e-5;
 
 std::string frictionName(const ::testing::TestParamInfo<double>& info) {
   return "mu" + std::to_string(static_cast<int>(std::lround(info.param * 10.0)));
@@ -30,12 +32,13 @@ TEST_P(FlatFriction, SlidesAtCoulombsSpeedAfterOneSecond) {
   ASSERT_NEAR(law, 1.0, 1e-9);
   RecordProperty("speed_m_s", std::to_string(scene.speed()));
   RecordProperty("control_points", scene.rope().rod().controlPointCount());
-  EXPECT_NEAR(scene.speed(), law, 0.02 * law) << "Coulomb: " << law << " m/s after 1 s";
+  // 0.1 %: measured within 0.035 % for mu up to 1 (sliding friction is exactly mu f_n at every speed).
+  EXPECT_NEAR(scene.speed(), law, 1e-3 * law) << "Coulomb: " << law << " m/s after 1 s";
 }
 
 // Pulled by F = 0.9 mu m g: static friction holds it; from 0.5 s to 1.5 s its centre of mass moves by
-// less than 1 mm.
-TEST_P(FlatFriction, CreepsBelowOneMillimetrePerSecondBelowTheLimit) {
+// less than 10 um.
+TEST_P(FlatFriction, HoldsStillBelowTheLimit) {
   FloorPullSceneSettings settings;
   settings.friction = GetParam();
   settings.pullAcceleration = 0.9 * settings.friction * settings.gravity;

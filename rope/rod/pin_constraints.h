@@ -1,6 +1,6 @@
 #pragma once
-// Point constraints on the curve ([A] §5.1 "6 constraints to fix the two extremities", spec §2
-// "Constraints"): a pin holds C(s*) = sum_i b_i(s*) q_i at a target. It is linear in q, so with the
+// Point constraints on the curve (docs/method.md §9, eqs. 25–26; [A] §5.1 "6 constraints to fix the
+// two extremities"): a pin holds C(s*) = sum_i b_i(s*) q_i at a target. It is linear in q, so with the
 // implicit step q_new = q + h (v + dv) it becomes three rows on dv:
 //   sum_i b_i(s*) dv_i = (target - C(s*)) / h - Cdot(s*),
 // i.e. the end-of-step position is exactly the target (moving targets included): the position error

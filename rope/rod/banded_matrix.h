@@ -5,6 +5,7 @@
 // is w = b (d + 1) - 1. Only the lower band is stored: N (w + 1) doubles, no dense N x N anywhere.
 // Factorising costs O(N w^2), a solve O(N w). Failure (a non-positive or non-finite pivot) is
 // reported, never turned into NaN.
+// Not API: installed only because rope/rod/rod.h holds one; it may change in any release.
 
 #include <vector>
 

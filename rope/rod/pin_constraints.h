@@ -11,6 +11,7 @@
 // A row's column of G^T is zero before the pin's first control point, so its forward substitution
 // starts there: a pin at the far end costs O(1), one at the near end O(n). The 3m x 3m Schur matrix is
 // the only dense matrix (m pins, m small).
+// Not API (except Pin, which Rod::pins() returns): installed only because rope/rod/rod.h holds a solver.
 
 #include <vector>
 

@@ -17,6 +17,7 @@
 // Also per span: the local mass matrix mu int b_a b_b l0' ds ([A] eq. 10), the local bending matrix
 // EI int b_a'' b_b'' / l0'^3 ds (bending_energy.h), the gravity weights mu int b_a l0' ds and the rest
 // length int l0' ds.
+// Not API: installed only because rope/rod/rod.h holds the integrals; it may change in any release.
 
 #include <vector>
 

@@ -26,6 +26,7 @@
 
 #include "rope/common/types.h"
 
+// Not API: installed only because attachment.h and rope_rope_contact.h include it; may change in any release.
 namespace rope::bullet {
 
 struct ContactLaw {

@@ -1,6 +1,6 @@
 #pragma once
-// Point constraints on the curve ([A] §5.1 "6 constraints to fix the two extremities", spec §2
-// "Constraints"): a pin holds C(s*) = sum_i b_i(s*) q_i at a target. It is linear in q, so with the
+// Point constraints on the curve (docs/method.md §9, eqs. 25–26; [A] §5.1 "6 constraints to fix the
+// two extremities"): a pin holds C(s*) = sum_i b_i(s*) q_i at a target. It is linear in q, so with the
 // implicit step q_new = q + h (v + dv) it becomes three rows on dv:
 //   sum_i b_i(s*) dv_i = (target - C(s*)) / h - Cdot(s*),
 // i.e. the end-of-step position is exactly the target (moving targets included): the position error
@@ -11,6 +11,7 @@
 // A row's column of G^T is zero before the pin's first control point, so its forward substitution
 // starts there: a pin at the far end costs O(1), one at the near end O(n). The 3m x 3m Schur matrix is
 // the only dense matrix (m pins, m small).
+// Not API (except Pin, which Rod::pins() returns): installed only because rope/rod/rod.h holds a solver.
 
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// The dynamic adaptive rod ([A] §3–5, spec §2–3): a B-spline curve whose control points are the
+// The dynamic adaptive rod ([A] §3–5; docs/method.md §5–§10): a B-spline curve whose control points are the
 // degrees of freedom, with mass and gravity from a continuous linear density, Green–Lagrange
 // stretching ([A] eq. 11), a continuous bending energy (bending_energy.h), a linearised backward-Euler
 // step solved by a block-banded Cholesky in O(n), pins by Lagrange multipliers, knot insertion and
@@ -8,7 +8,7 @@
 // Units: metres, seconds, kilograms, newtons. The curve parameter s runs over
 // [beginParameter(), endParameter()]; for ropes created from a segment it is the rest arclength.
 //
-// Step: (M + hD + h^2 K) dv = h (F + f_ext - D v - h K v), v += dv, q += h v (spec §2), with
+// Step: (M + hD + h^2 K) dv = h (F + f_ext - D v - h K v), v += dv, q += h v (method §8, eqs. 22–23), with
 // D = massDamping M + stiffnessDamping K (Rayleigh), K the stretching stiffness with the Gauss–Newton
 // clamp plus the constant bending stiffness, and pins imposed on the end-of-step positions.
 // Then adaptivity ([A] §4): knots at interaction points, insertion where the control polygon bends

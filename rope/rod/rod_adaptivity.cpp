@@ -1,4 +1,4 @@
-// Rod: knot insertion and removal, explicit and adaptive ([A] §3.1, §4; spec §1, §3).
+// Rod: knot insertion and removal, explicit and adaptive ([A] §3.1, §4; docs/method.md §2–§3, §10).
 #include <algorithm>
 #include <cmath>
 #include <string>

@@ -21,6 +21,8 @@
 // Dynamic bodies get the samples' forces as explicit impulses, so the sum of the samples' stiffness
 // (and damping) on one body is capped at bodyStabilityFactor * m_eff / h^2 (/ h), m_eff the smallest
 // effective mass along the normals at its contact points.
+//
+// Not API: installed only because rope_object.h includes it; may change in any release.
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 

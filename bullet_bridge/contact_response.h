@@ -1,26 +1,21 @@
 #pragma once
-// Penalty contact with damping and regularised Coulomb friction between a rope point and a body,
-// linearised for the rope's implicit step (Rod::addSpring) and closed by Newton's third law.
+// Penalty contact with damping and Coulomb friction, linearised for the rope's implicit step
+// (Rod::addSpring) and closed by Newton's third law.
 //
-// Law at the end of the step (backward Euler, as the rod's own forces), with gap d, unit normal n from
-// the body into the rope, rope velocity u, body point velocity v_b and w = u - v_b:
+// The point law (rope-rope contact, rope_rope_contact.h), at the end of the step (backward Euler, as
+// the rod's own forces), with gap d, unit normal n into the rope, rope velocity u, the other side's
+// velocity v_b and w = u - v_b:
 //   f_n = -k d_new - c n.w_new,   d_new = d + h n.(u_new - v_b)          (normal, along n)
 //   f_t = -eta P_t w_new,         eta = mu f_n0 / max(|P_t w|, v_reg)   (tangent, P_t = I - n n^T)
 // so |f_t| <= mu f_n0 when sliding at a steady speed, and below v_reg the friction is a stiff viscous
 // "stick" that stays stable because it is implicit. f_n0 = max(0, normal force at the current state).
 // In Rod::addSpring's form f ~ f0 - K (x_new - x) - D (u_new - u) this is K = k n n^T,
 // D = c n n^T + eta P_t and f0 = (-k d - c n.w + k h n.v_b) n - eta P_t w (the k h n.v_b term lets
-// the body move on during the step).
+// the body move on during the step). Rope-body contact uses the samples' law below instead.
 //
 // The rope then feels exactly F = f0 - h K u_new - D (u_new - u) over the step (what the rod's system
-// integrates); endOfStepForce() rebuilds it from the rope's new velocity at s, and the body gets -F h
-// at the contact point, so the pair conserves linear momentum to round-off.
-//
-// Penalty contact is unilateral and friction bounded by the actual normal force: RopeObject redoes a
-// step (from a copy of the rod, at most 4 solves per substep) without the contacts whose end-of-step
-// normal force came out pulling, and with eta recomputed from each contact's end-of-step normal force
-// where that differs from the estimate by more than 5% (the start-of-step penetration force is a poor
-// estimate when the rope's contact pressure is uneven, and let friction exceed mu N).
+// integrates); endOfStepForce() rebuilds it from the rope's new velocity at s, and the other side gets
+// -F h at the contact point, so the pair conserves linear momentum to round-off.
 
 #include <Eigen/Core>
 
@@ -62,7 +57,7 @@ bool contactActive(double distance, const Vec3& normal, const Vec3& ropeVelocity
 // (u) and after (uNew) the step.
 Vec3 endOfStepForce(const ContactSpring& spring, const Vec3& u, const Vec3& uNew, double h);
 
-// ---- line-contact samples (line_contact.h) ----
+// ---- line-contact samples (line_contact.h; docs/method.md §11, eqs. 31-34) ----
 // One sample of a rope-body line contact carries the normal law above with the sample's share of the
 // line law (stiffness = lineContactStiffness * weight, ...), and Coulomb friction with a stick state
 // instead of the regularised law:

@@ -8,7 +8,11 @@
 // which *is* material (insertion and removal keep the parametrisation): a new sample at s takes the
 // anchor interpolated linearly between the stored anchors on either side of s on the same body, or
 // moved rigidly with the rope from the one nearest anchor if only one side has one. Sliding samples
-// store their end-of-step point as a fresh anchor plus a flag, so they start the next substep sliding.
+// store an anchor that puts their spring at the friction force they ended the step with, plus a flag,
+// so they start the next substep sliding, or stick again still carrying their load (docs/method.md
+// §11, eq. 33).
+//
+// Not API: installed only because body_contacts.h includes it; may change in any release.
 
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <LinearMath/btVector3.h>

@@ -1,6 +1,6 @@
 #pragma once
 // Where a rope touches a body along one capsule piece, and the quadrature samples that integrate the
-// contact pressure over that stretch of the curve (docs/method.md, "Contact as a line load").
+// contact pressure over that stretch of the curve (docs/method.md §11, eq. 30).
 //
 // The contact between a rope and a body is a pressure p(s) along the part of the curve that touches,
 // not a force at one parameter. Its consistent generalised force on control point i is
@@ -22,6 +22,8 @@
 // For convex bodies the touching set of a piece is one interval (the distance to a convex set is
 // convex along a segment, and the curve stays within the capsule's bulge of its chord); for concave
 // meshes it is treated as one interval from its first to its last touching parameter.
+//
+// Not API: installed only because body_contacts.h includes it; may change in any release.
 
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 

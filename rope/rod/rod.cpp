@@ -224,10 +224,17 @@ void Rod::setVelocities(const PointList& velocities) {
 
 // ---- pins ----
 
-int Rod::findPin(int id) const {
-  for (size_t i = 0; i < pins_.size(); ++i)
-    if (pins_[i].id == id) return static_cast<int>(i);
-  throw InvalidArgument("id", std::to_string(id), "no such pin or clamp");
+int Rod::findPin(int id, bool clamp) const {
+  for (size_t i = 0; i < pins_.size(); ++i) {
+    if (pins_[i].id != id) continue;
+    if (pins_[i].isClamp() != clamp) {
+      throw InvalidArgument("id", std::to_string(id),
+                            clamp ? "is a pin: use setPinTarget / releasePin"
+                                  : "is a clamp: use setClampTarget / releaseClamp");
+    }
+    return static_cast<int>(i);
+  }
+  throw InvalidArgument("id", std::to_string(id), clamp ? "no such clamp" : "no such pin");
 }
 
 int Rod::constraintRowCount() const {
@@ -236,31 +243,33 @@ int Rod::constraintRowCount() const {
   return rows;
 }
 
-void Rod::requireFreeParameter(double s) const {
+int Rod::addPin(double s, const Vec3& target, const Vec3& direction) {
   for (const Pin& other : pins_) {
     if (other.parameter == s) {
       throw InvalidArgument("s", formatValue(s),
                             other.isClamp() ? "a clamp is already there" : "a pin is already there");
     }
   }
+  Pin added;
+  added.id = nextPinId_;
+  added.parameter = s;
+  added.target = target;
+  added.direction = direction;
+  const int rows = constraintRowCount() + (added.isClamp() ? 5 : 3);
+  if (rows > 3 * controlPointCount()) {
+    throw InvalidArgument(added.isClamp() ? "clamps" : "pins", std::to_string(rows) + " constraint rows",
+                          "more than the rod's 3 x " + std::to_string(controlPointCount()) + " degrees of freedom");
+  }
+  ++nextPinId_;
+  pins_.push_back(added);
+  trialValid_ = false;
+  return added.id;
 }
 
 int Rod::pin(double s, const Vec3& target) {
   validateParameter(s);
   requireFiniteVector("target", target);
-  requireFreeParameter(s);
-  if (constraintRowCount() + 3 > 3 * controlPointCount()) {
-    throw InvalidArgument("pins", std::to_string(pins_.size() + 1),
-                          "more constraints than the rod's degrees of freedom (" +
-                              std::to_string(controlPointCount()) + " control points)");
-  }
-  Pin added;
-  added.id = nextPinId_++;
-  added.parameter = s;
-  added.target = target;
-  pins_.push_back(added);
-  trialValid_ = false;
-  return added.id;
+  return addPin(s, target, Vec3::Zero());
 }
 
 int Rod::pin(double s) {
@@ -269,21 +278,14 @@ int Rod::pin(double s) {
 }
 
 void Rod::setPinTarget(int id, const Vec3& target) {
-  const int index = findPin(id);
-  if (pins_[static_cast<size_t>(index)].isClamp()) {
-    throw InvalidArgument("id", std::to_string(id), "is a clamp: use setClampTarget");
-  }
+  const int index = findPin(id, false);
   requireFiniteVector("target", target);
   pins_[static_cast<size_t>(index)].target = target;
   trialValid_ = false;
 }
 
 void Rod::releasePin(int id) {
-  const int index = findPin(id);
-  if (pins_[static_cast<size_t>(index)].isClamp()) {
-    throw InvalidArgument("id", std::to_string(id), "is a clamp: use releaseClamp");
-  }
-  pins_.erase(pins_.begin() + index);
+  pins_.erase(pins_.begin() + findPin(id, false));
   trialValid_ = false;
 }
 
@@ -306,20 +308,7 @@ Vec3 unitDirection(const Vec3& direction) {
 int Rod::clamp(double s, const Vec3& target, const Vec3& direction) {
   validateParameter(s);
   requireFiniteVector("target", target);
-  const Vec3 unit = unitDirection(direction);
-  requireFreeParameter(s);
-  if (constraintRowCount() + 5 > 3 * controlPointCount()) {
-    throw InvalidArgument("clamps", std::to_string(constraintRowCount() + 5) + " constraint rows",
-                          "more than the rod's 3 x " + std::to_string(controlPointCount()) + " degrees of freedom");
-  }
-  Pin added;
-  added.id = nextPinId_++;
-  added.parameter = s;
-  added.target = target;
-  added.direction = unit;
-  pins_.push_back(added);
-  trialValid_ = false;
-  return added.id;
+  return addPin(s, target, unitDirection(direction));
 }
 
 int Rod::clamp(double s) {
@@ -332,10 +321,7 @@ int Rod::clamp(double s) {
 }
 
 void Rod::setClampTarget(int id, const Vec3& target, const Vec3& direction) {
-  const int index = findPin(id);
-  if (!pins_[static_cast<size_t>(index)].isClamp()) {
-    throw InvalidArgument("id", std::to_string(id), "is a pin: use setPinTarget");
-  }
+  const int index = findPin(id, true);
   requireFiniteVector("target", target);
   const Vec3 unit = unitDirection(direction);
   pins_[static_cast<size_t>(index)].target = target;
@@ -344,11 +330,7 @@ void Rod::setClampTarget(int id, const Vec3& target, const Vec3& direction) {
 }
 
 void Rod::releaseClamp(int id) {
-  const int index = findPin(id);
-  if (!pins_[static_cast<size_t>(index)].isClamp()) {
-    throw InvalidArgument("id", std::to_string(id), "is a pin: use releasePin");
-  }
-  pins_.erase(pins_.begin() + index);
+  pins_.erase(pins_.begin() + findPin(id, true));
   trialValid_ = false;
 }
 

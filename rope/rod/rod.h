@@ -210,9 +210,12 @@ class Rod {
   static Rod fromCurve(const RodSettings& settings, const KnotVector& knots, const PointList& points,
                        RestShape rest);
   void validateParameter(double s) const;
-  int findPin(int id) const;
+  // Index of the pin (clamp = false) or clamp with this id; "id" for an unknown id or the other kind.
+  int findPin(int id, bool clamp) const;
   int constraintRowCount() const;  // 3 per pin, 5 per clamp
-  void requireFreeParameter(double s) const;
+  // Adds a pin (direction zero) or clamp (unit direction) after the checks both share ("s" taken,
+  // too many constraint rows); s and target are already validated.
+  int addPin(double s, const Vec3& target, const Vec3& direction);
   // Appends the knots next to each clamp, so that adaptivity keeps the tangent there exact.
   void addClampNeighbours(std::vector<double>& interactions) const;
   bool assembleAndSolve(double h, StepReport& report);

@@ -39,75 +39,9 @@ ConstraintRows row(int first, std::vector<double> basis, const Vec3& rhs) {
   return r;
 }
 
-TEST(ConstrainedSolver, MatchesTheDenseKktSolution) {
-  SymmetricBandedMatrix banded;
-  const int blocks = 14;
-  const Eigen::MatrixXd S = makeSystem(blocks, 3, banded);
-  const int n = static_cast<int>(S.rows());
-  std::vector<ConstraintRows> rows = {row(0, {1.0, 0.0, 0.0, 0.0}, Vec3(0.1, -0.2, 0.3)),
-                                      row(5, {0.1, 0.5, 0.3, 0.1}, Vec3(1.0, 2.0, -1.0)),
-                                      row(10, {0.0, 0.0, 0.0, 1.0}, Vec3(-0.5, 0.0, 0.25))};
-  Eigen::VectorXd r = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0);
-  // Dense KKT reference.
-  const int m = 3 * static_cast<int>(rows.size());
-  Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + m, n + m);
-  Eigen::VectorXd rhs(n + m);
-  kkt.topLeftCorner(n, n) = S;
-  rhs.head(n) = r;
-  for (int p = 0; p < static_cast<int>(rows.size()); ++p)
-    for (int axis = 0; axis < 3; ++axis) {
-      const ConstraintRows& c = rows[static_cast<size_t>(p)];
-      for (int a = 0; a < c.count; ++a) {
-        kkt(n + 3 * p + axis, 3 * (c.first + a) + axis) = c.basis[a];
-        kkt(3 * (c.first + a) + axis, n + 3 * p + axis) = c.basis[a];
-      }
-      rhs(n + 3 * p + axis) = c.rhs[axis];
-    }
-  const Eigen::VectorXd expected = kkt.fullPivLu().solve(rhs).head(n);
-  ASSERT_TRUE(banded.factorize());
-  ConstrainedSolver solver;
-  Eigen::VectorXd x = r;
-  ASSERT_TRUE(solver.solve(banded, rows, x.data()));
-  EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm());
-  // The constraints hold.
-  for (const ConstraintRows& c : rows) {
-    Vec3 value = Vec3::Zero();
-    for (int a = 0; a < c.count; ++a) value += c.basis[a] * Vec3(x(3 * (c.first + a)), x(3 * (c.first + a) + 1), x(3 * (c.first + a) + 2));
-    EXPECT_LT((value - c.rhs).norm(), 1e-12);
-  }
-  // Without constraints it is the plain solve.
-  Eigen::VectorXd y = r;
-  ASSERT_TRUE(solver.solve(banded, {}, y.data()));
-  EXPECT_LT((y - S.ldlt().solve(r)).norm(), 1e-12 * y.norm());
-}
-
-TEST(ConstrainedSolver, DependentConstraintsAreReported) {
-  SymmetricBandedMatrix banded;
-  makeSystem(8, 3, banded);
-  ASSERT_TRUE(banded.factorize());
-  const ConstraintRows a = row(2, {0.2, 0.3, 0.4, 0.1}, Vec3(1, 1, 1));
-  ConstrainedSolver solver;
-  std::vector<double> x(static_cast<size_t>(banded.size()), 1.0);
-  EXPECT_FALSE(solver.solve(banded, {a, a}, x.data()));
-}
-
-TEST(ConstrainedSolver, DirectionalRowsMatchTheDenseKktSolution) {
-  // Pins (three axis rows) mixed with clamp-style rows along arbitrary directions (two per block).
-  SymmetricBandedMatrix banded;
-  const int blocks = 14;
-  const Eigen::MatrixXd S = makeSystem(blocks, 3, banded);
-  const int n = static_cast<int>(S.rows());
-  std::vector<ConstraintRows> rows = {row(0, {1.0, 0.0, 0.0, 0.0}, Vec3(0.1, -0.2, 0.3)),
-                                      row(6, {-0.9, 0.3, 0.5, 0.1}, Vec3(0.4, -1.0, 0.0)),
-                                      row(10, {0.0, 0.0, 0.0, 1.0}, Vec3(-0.5, 0.0, 0.25)),
-                                      row(10, {0.0, 0.0, -3.0, 3.0}, Vec3(0.7, 0.2, 0.0))};
-  orthonormalComplement(Vec3(0.3, -0.5, 0.8).normalized(), rows[1].directions[0], rows[1].directions[1]);
-  rows[1].rowCount = 2;
-  orthonormalComplement(Vec3(0.0, 0.0, 1.0), rows[3].directions[0], rows[3].directions[1]);
-  rows[3].rowCount = 2;
-  Eigen::VectorXd r = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0);
-  std::vector<Eigen::VectorXd> gradients;
-  std::vector<double> values;
+// The rows as dense gradients over the n unknowns (one per row) and their right-hand sides.
+void denseRows(const std::vector<ConstraintRows>& rows, int n, std::vector<Eigen::VectorXd>& gradients,
+               std::vector<double>& values) {
   for (const ConstraintRows& c : rows) {
     for (int k = 0; k < c.rowCount; ++k) {
       Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
@@ -117,8 +51,19 @@ TEST(ConstrainedSolver, DirectionalRowsMatchTheDenseKktSolution) {
       values.push_back(c.rhs[k]);
     }
   }
+}
+
+// Solves S x = r - G^T lambda, G x = c with the banded solver and checks it against the dense KKT
+// system, the rows' values and (homogeneous form) G y = 0.
+void checkAgainstDenseKkt(const std::vector<ConstraintRows>& rows) {
+  SymmetricBandedMatrix banded;
+  const Eigen::MatrixXd S = makeSystem(14, 3, banded);
+  const int n = static_cast<int>(S.rows());
+  const Eigen::VectorXd r = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0);
+  std::vector<Eigen::VectorXd> gradients;
+  std::vector<double> values;
+  denseRows(rows, n, gradients, values);
   const int m = static_cast<int>(gradients.size());
-  ASSERT_EQ(m, 10);
   Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + m, n + m);
   Eigen::VectorXd rhs(n + m);
   kkt.topLeftCorner(n, n) = S;
@@ -137,10 +82,43 @@ TEST(ConstrainedSolver, DirectionalRowsMatchTheDenseKktSolution) {
   for (int k = 0; k < m; ++k) {
     EXPECT_NEAR(gradients[static_cast<size_t>(k)].dot(x), values[static_cast<size_t>(k)], 1e-12);
   }
-  // The homogeneous solve keeps every row at zero.
   Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(n, 0.5, -2.0);
   solver.solveHomogeneous(banded, y.data());
   for (int k = 0; k < m; ++k) EXPECT_NEAR(gradients[static_cast<size_t>(k)].dot(y), 0.0, 1e-12);
+  // Without constraints it is the plain solve.
+  Eigen::VectorXd z = r;
+  ASSERT_TRUE(solver.solve(banded, {}, z.data()));
+  EXPECT_LT((z - S.ldlt().solve(r)).norm(), 1e-12 * z.norm());
+}
+
+TEST(ConstrainedSolver, MatchesTheDenseKktSolution) {
+  checkAgainstDenseKkt({row(0, {1.0, 0.0, 0.0, 0.0}, Vec3(0.1, -0.2, 0.3)),
+                        row(5, {0.1, 0.5, 0.3, 0.1}, Vec3(1.0, 2.0, -1.0)),
+                        row(10, {0.0, 0.0, 0.0, 1.0}, Vec3(-0.5, 0.0, 0.25))});
+}
+
+TEST(ConstrainedSolver, DependentConstraintsAreReported) {
+  SymmetricBandedMatrix banded;
+  makeSystem(8, 3, banded);
+  ASSERT_TRUE(banded.factorize());
+  const ConstraintRows a = row(2, {0.2, 0.3, 0.4, 0.1}, Vec3(1, 1, 1));
+  ConstrainedSolver solver;
+  std::vector<double> x(static_cast<size_t>(banded.size()), 1.0);
+  EXPECT_FALSE(solver.solve(banded, {a, a}, x.data()));
+}
+
+TEST(ConstrainedSolver, DirectionalRowsMatchTheDenseKktSolution) {
+  // Pins (three axis rows) mixed with clamp-style rows along arbitrary directions (two per block).
+  std::vector<ConstraintRows> rows = {row(0, {1.0, 0.0, 0.0, 0.0}, Vec3(0.1, -0.2, 0.3)),
+                                      row(6, {-0.9, 0.3, 0.5, 0.1}, Vec3(0.4, -1.0, 0.0)),
+                                      row(10, {0.0, 0.0, 0.0, 1.0}, Vec3(-0.5, 0.0, 0.25)),
+                                      row(10, {0.0, 0.0, -3.0, 3.0}, Vec3(0.7, 0.2, 0.0))};
+  for (int i : {1, 3}) {
+    const Vec3 d = i == 1 ? Vec3(0.3, -0.5, 0.8).normalized() : Vec3::UnitZ();
+    orthonormalComplement(d, rows[static_cast<size_t>(i)].directions[0], rows[static_cast<size_t>(i)].directions[1]);
+    rows[static_cast<size_t>(i)].rowCount = 2;
+  }
+  checkAgainstDenseKkt(rows);
 }
 
 TEST(ConstraintRows, OrthonormalComplementIsRightHandedAndDeterministic) {

@@ -25,8 +25,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // ---- reference: the inextensible elastica of a cantilever clamped horizontally at s = 0 ----
-// theta(s) is the tangent's angle below... above the x axis; a downward tip load P and a downward
-// weight w per length give the moment balance EI theta' = -P (x_L - x) - int_s^L w (x(t) - x) dt,
+// theta(s) is the tangent's angle from the x axis (positive upwards); a downward tip load P and a
+// downward weight w per length give the moment balance EI theta' = -P (x_L - x) - int_s^L w (x(t) - x) dt,
 // i.e. EI theta'' = (P + w (L - s)) cos theta with theta(0) = 0 (clamp) and theta'(L) = 0 (free
 // end). Shooting on theta'(0) with RK4 and bisection.
 struct ElasticaTip {

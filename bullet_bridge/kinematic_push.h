@@ -17,6 +17,7 @@
 // at the contact (computeImpulseDenominator), so the scheme is stable for any mass and step. A body
 // resting on a rope holds its position; its velocity read between steps is then the upward g h that
 // the next substep's gravity cancels, rather than zero.
+// Not API: installed only because kinematic_rope.h holds its contacts; it may change in any release.
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 

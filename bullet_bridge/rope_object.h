@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "bullet_bridge/attachment.h"
+#include "bullet_bridge/body_contacts.h"
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/contact.h"
@@ -80,8 +81,8 @@ class RopeObject {
   const std::vector<CutPartner>& cutPartners() const { return cutPartners_; }
 
   // ---- last substep ----
-  // Contacts of the last substep; with friction, a contact's force is the sum over the knots it was
-  // shared to (BulletRopeSettings::contactKnotSpacing).
+  // Rope-body contacts of the last substep: one record per quadrature sample of the line contact
+  // (body_contacts.h), its force the sample's share of the pressure over the substep.
   const std::vector<RopeContactRecord>& contacts() const { return contacts_; }
   const RopeStepRecord& lastStep() const { return lastStep_; }
 
@@ -106,23 +107,17 @@ class RopeObject {
   void enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld);
   void leaveWorld();
   int findAttachment(int id) const;
-  void gatherContacts(const std::vector<const btCollisionObject*>& candidates, double h);
   // Whether the rope is attached to object within 4 radii of the capsule [s0, s1]: the rope's end sits
   // in the body's surface there, so those contacts are ignored.
   bool attachedNear(const btCollisionObject& object, double s0, double s1) const;
-  // Queues weight * spring at parameter s on the rod and remembers it for the body's impulse.
-  void queueSpring(double s, double weight, const ContactSpring& spring, btRigidBody* body, const btVector3& point,
-                   int record, int attachment);
-
+  // An attachment's spring, queued on the rod with every solve of the substep.
   struct PendingSpring {
     double s;
-    Vec3 velocity;     // rope velocity at s before the step
+    Vec3 velocity;      // rope velocity at s before the step
     ContactSpring spring;
     btRigidBody* body;  // receives the opposite impulse (nullptr: static or kinematic)
     btVector3 point;    // where, world frame
-    double weight;      // share of the contact's spring (lever rule), 1 for attachments
-    int record;         // index in contacts_, or -1 for an attachment
-    int attachment;     // index in attachments_, or -1 for a contact
+    int attachment;     // index in attachments_
   };
 
   Rod rod_;
@@ -136,16 +131,7 @@ class RopeObject {
   std::vector<RopeContactRecord> contacts_;
   RopeStepRecord lastStep_;
   std::vector<PendingSpring> pending_;
-  std::vector<Contact> scratch_;
-  // What a contact's law was evaluated from, per contact record (to re-evaluate its friction).
-  struct ContactInput {
-    ContactLaw law;
-    double distance;
-    Vec3 normal, velocity, bodyVelocity;
-    double frictionNormalForce;  // N, < 0: the start-of-step estimate
-  };
-  std::vector<ContactInput> inputs_;
-  std::vector<Vec3> forceTotals_;  // per contact record: end-of-step force of the last solve, N
+  BodyContacts bodyContacts_;
 };
 
 }  // namespace rope::bullet

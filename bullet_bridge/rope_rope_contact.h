@@ -18,6 +18,7 @@
 // curve (neighbouring capsules always overlap; that is the rope, not a contact), the same across the
 // cut of two pieces cut from one rope (RopeObject::cut), and ropes with selfContact off. The contact points become interaction knots ([A] §4), so the rope refines where
 // it presses on itself.
+// Not API: installed only because rope_world.h holds the solver; it may change in any release.
 
 #include <vector>
 

@@ -8,6 +8,18 @@
 namespace rope::bullet {
 
 void BulletRopeSettings::validate() const {
+  requirePositive("settings.lineContactStiffness", lineContactStiffness);
+  requireNonNegative("settings.lineContactDamping", lineContactDamping);
+  requireNonNegative("settings.lineSpeculativeDamping", lineSpeculativeDamping);
+  if (contactQuadraturePoints < 1 || contactQuadraturePoints > 8) {
+    throw InvalidArgument("settings.contactQuadraturePoints", std::to_string(contactQuadraturePoints),
+                          "must be in [1, 8]");
+  }
+  requirePositive("settings.concentratedContactRatio", concentratedContactRatio);
+  if (concentratedContactRatio > 1.0) {
+    throw InvalidArgument("settings.concentratedContactRatio", formatValue(concentratedContactRatio),
+                          "must be <= 1");
+  }
   requirePositive("settings.contactStiffness", contactStiffness);
   requireNonNegative("settings.contactDamping", contactDamping);
   requireNonNegative("settings.speculativeDamping", speculativeDamping);
@@ -16,7 +28,6 @@ void BulletRopeSettings::validate() const {
   if (capsulesPerSpan < 1 || capsulesPerSpan > 64) {
     throw InvalidArgument("settings.capsulesPerSpan", std::to_string(capsulesPerSpan), "must be in [1, 64]");
   }
-  requireNonNegative("settings.contactKnotSpacing", contactKnotSpacing);
   requireNonNegative("settings.speculativeMargin", speculativeMargin);
   requirePositive("settings.initialPredictionTime", initialPredictionTime);
   requirePositive("settings.bodyStabilityFactor", bodyStabilityFactor);

@@ -1,6 +1,7 @@
 #pragma once
-// What a user configures for a rope living in a Bullet world: the contact law (penalty with damping
-// plus regularised Coulomb friction), the collision proxies and the broadphase filter. SI units.
+// What a user configures for a rope living in a Bullet world: the contact laws (rope-body: a penalty
+// line load with damping and Coulomb friction with sticking; rope-rope: penalty point contacts), the
+// collision proxies and the broadphase filter. SI units.
 // The rope's material, gravity and discretisation stay in rope::RodSettings.
 
 #include <LinearMath/btScalar.h>
@@ -10,45 +11,67 @@
 namespace rope::bullet {
 
 struct BulletRopeSettings {
-  // Penalty stiffness of one contact point, N/m, > 0. Enters the rope's implicit system
-  // (Rod::addSpring), so the rope side is stable for any value; on a dynamic body the force is an
-  // explicit impulse, so per contact it is capped at bodyStabilityFactor * m_eff / h^2 (m_eff the
-  // body's effective mass at the contact point along the normal). Not much stiffer by default: the
-  // resting depth per contact (force / k, often < 1e-6 m) must stay well above btScalar round-off of
-  // the contact distance, or float builds see noisy normal forces (measured: at 5e4 a rope on a float
-  // ramp chattered and its friction doubled; at 1e4 both precisions match Coulomb within 2%).
-  double contactStiffness = 1.0e4;
-  // Penalty damping along the normal, N s/m, >= 0 (capped like the stiffness, by factor * m_eff / h).
-  double contactDamping = 50.0;
-  // A speculative contact (still apart, but closing within the step at the current approach speed)
+  // ---- rope-body contact: a pressure along the touching stretch of the curve (line_contact.h) ----
+  // The rope presses on a body with a line load p = k (-gap) - c (normal approach speed) per metre of
+  // rope, integrated along every touching stretch by Gauss-Legendre quadrature into the consistent
+  // generalised force sum_q w_q b_i(s_q) p(s_q) and its stiffness into the rope's implicit step
+  // (Rod::addSpringSample). A penetration of gap metres over the whole rope holds k * gap newtons per
+  // metre: a 5 mm nylon rope (0.09 kg/m) rests about 0.45 um deep on a floor.
+  //
+  // Penalty stiffness, N/m per m of rope (N/m^2), > 0. The rope side is implicit and stable for any
+  // value; on a dynamic body the forces are explicit impulses, so the sum of the stiffness of all the
+  // samples on one body is capped at bodyStabilityFactor * m_eff / h^2 (m_eff: the body's smallest
+  // effective mass at the contact points). Not much stiffer by default: the resting depth must stay
+  // well above btScalar round-off of the contact distance in float builds (about 1e-7 m at 1 m).
+  double lineContactStiffness = 2.0e6;
+  // Penalty damping along the normal, N s/m per m of rope (N s/m^2), >= 0 (capped on light bodies like
+  // the stiffness, at bodyStabilityFactor * m_eff / h). About critical for the default stiffness and a
+  // 5 mm nylon rope (2 sqrt(k m') = 850 N s/m^2); backward Euler damps the rest. Much more turns a
+  // resting rope's jitter into normal forces larger than its weight, which pull and release contacts.
+  double lineContactDamping = 1.0e3;
+  // A speculative sample (still apart, but closing within the step at the current approach speed)
   // acts as a damper of this coefficient towards the approach speed that exactly closes the gap,
   // -gap/h, so that a fast rope ends the step on the surface instead of being merely slowed by the
-  // spring (which let a 17 m/s rope pass a 1 cm plate). N s/m, >= 0; it must be large against the
-  // rope's local mass over h (about 1 N s/m for a 1 cm rope at 1/240 s). Capped on light bodies
-  // like contactDamping.
-  double speculativeDamping = 1.0e3;
-  // Coulomb friction coefficient, >= 0 (0 = frictionless).
+  // spring (a soft law let a 17 m/s rope pass a 1 cm plate). N s/m per m of rope, >= 0; it must be
+  // large against the rope's mass per metre over h (about 90 N s/m^2 for a 1 cm rope at 1/240 s).
+  double lineSpeculativeDamping = 2.0e5;
+  // Gauss-Legendre points per touching stretch of one capsule, in [1, 8]. Two integrate the cubic
+  // basis times a linear pressure exactly on each capsule piece (a quarter of a knot span by default).
+  int contactQuadraturePoints = 2;
+  // A touching stretch shorter than this share of the knot span around it is a concentrated load
+  // (a thin bar, an edge the rope crosses, a pulley's rim seen from far away): it gets a knot at its
+  // centre so that the curve can kink there, and keeps it while the load lasts. In (0, 1].
+  double concentratedContactRatio = 0.5;
+
+  // Coulomb friction coefficient, >= 0 (0 = frictionless), for rope-body and rope-rope contact.
+  // Rope-body samples stick (each one held by a tangential spring of lineContactStiffness and
+  // lineContactDamping to where it began to stick, carried along the curve as knots come and go)
+  // until that spring would need more than friction * normal force, then slide with exactly that
+  // force against the sliding direction.
   double friction = 0.5;
-  // Regularisation velocity of Coulomb friction, m/s, > 0: below it the friction force grows linearly
-  // with the sliding speed (viscous "sticking"), above it it is mu * f_n against the sliding direction.
+  // Friction speed scale, m/s, > 0. Rope-body: a sliding sample slower than this sticks again at the
+  // next substep. Rope-rope: below it the friction force grows linearly with the sliding speed
+  // (viscous "sticking"), above it it is mu * f_n against the sliding direction.
   double frictionVelocity = 1.0e-3;
+
+  // ---- rope-rope and self-contact: point contacts (rope_rope_contact.h) ----
+  // Penalty stiffness of one contact point, N/m, > 0; its damping along the normal, N s/m, >= 0; and
+  // the speculative damper of a closing contact, N s/m, >= 0 (see lineSpeculativeDamping). Two ropes
+  // use the smaller value of each of the two ropes'.
+  double contactStiffness = 1.0e4;
+  double contactDamping = 50.0;
+  double speculativeDamping = 1.0e3;
+
+  // ---- collision proxies ----
   // Capsules per knot span, in [1, 64]: the collision geometry is the chain of capsules over
   // capsulesPerSpan equal parameter pieces of every non-empty span; rebuilt after each step.
   int capsulesPerSpan = 4;
-  // Knots at contacts ([A] §4), m of rope parameter, >= 0: a contact acts at its own parameter s (and
-  // so gets a knot there, giving the rope local freedom to wrap around an edge) only when no knot lies
-  // within this distance of s; otherwise it is shared between the two knots around s by the lever
-  // rule (same total force, no new knot). Larger values keep a rope lying along a surface from
-  // refining (it tends to spans of a few times this value, up to RodSettings::maxControlPoints), but
-  // the lever rule is not the consistent load b_i(s) f: above ~1 cm it let resting contact become
-  // uneven enough to upset friction (measured on the ramp test), hence the small default.
-  double contactKnotSpacing = 0.005;
   // Speculative contact distance, m, >= 0: contacts are found up to this gap before touching and act
   // only if the step is predicted to close them. Added to every swept bounding box.
   double speculativeMargin = 0.01;
   // Time the swept boxes of a freshly added rope cover before the first step told the real step, s, > 0.
   double initialPredictionTime = 1.0 / 60.0;
-  // Share of the stable explicit limit used on dynamic bodies, in (0, 1] (see contactStiffness).
+  // Share of the stable explicit limit used on dynamic bodies, in (0, 1] (see lineContactStiffness).
   double bodyStabilityFactor = 0.25;
   // Broadphase filter of the rope's capsules. The default group is a bit no stock Bullet filter uses;
   // the mask accepts everything, rope capsules included, so that ropes meet each other (and
@@ -60,7 +83,7 @@ struct BulletRopeSettings {
   // ---- rope-rope and self-contact (rope_rope_contact.h) ----
   // Whether the rope collides with itself. Rope-rope contact between two ropes is governed by the
   // broadphase filter above. The contact law is contactStiffness, contactDamping, speculativeDamping,
-  // friction and frictionVelocity (for two ropes, the smaller value of each of the two ropes').
+  // friction and frictionVelocity above.
   bool selfContact = true;
   // Two points of the same rope closer than this along the rest curve never count as touching, m of
   // rest length, >= 0; kDerivedExclusion: 4 rope radii. Points within pi r of each other along a

@@ -83,6 +83,33 @@ void RopeWorld::removeRope(RopeObject& rope) {
   report_.ropes.clear();
 }
 
+void RopeWorld::sortCapsulePairs() {
+  // Counting sort on the first capsule (a global capsule number: ropes' capsules numbered in rope
+  // order), then insertion sort within each bucket, which holds the few capsules one capsule
+  // touches: the full comparison sort of every pair was 8 % of the knot scene's step.
+  ropeOffsets_.assign(1, 0);
+  for (const RopeObject* rope : ropes_) ropeOffsets_.push_back(ropeOffsets_.back() + rope->proxies().size());
+  const int capsules = ropeOffsets_.back();
+  auto key = [&](const RopeCapsulePair& p) { return ropeOffsets_[static_cast<std::size_t>(p.ropeA)] + p.capsuleA; };
+  pairBuckets_.assign(static_cast<std::size_t>(capsules) + 1, 0);
+  for (const RopeCapsulePair& p : capsulePairs_) ++pairBuckets_[static_cast<std::size_t>(key(p)) + 1];
+  for (int c = 0; c < capsules; ++c) pairBuckets_[static_cast<std::size_t>(c) + 1] += pairBuckets_[static_cast<std::size_t>(c)];
+  sortedPairs_.resize(capsulePairs_.size());
+  bucketFill_.assign(pairBuckets_.begin(), pairBuckets_.end() - 1);
+  for (const RopeCapsulePair& p : capsulePairs_)
+    sortedPairs_[static_cast<std::size_t>(bucketFill_[static_cast<std::size_t>(key(p))]++)] = p;
+  const auto second = [](const RopeCapsulePair& a, const RopeCapsulePair& b) {
+    return std::tie(a.ropeB, a.capsuleB) < std::tie(b.ropeB, b.capsuleB);
+  };
+  for (int c = 0; c < capsules; ++c) {
+    const auto begin = sortedPairs_.begin() + pairBuckets_[static_cast<std::size_t>(c)];
+    const auto end = sortedPairs_.begin() + pairBuckets_[static_cast<std::size_t>(c) + 1];
+    for (auto it = begin + (begin != end ? 1 : 0); it < end; ++it)
+      for (auto back = it; back != begin && second(*back, *(back - 1)); --back) std::iter_swap(back, back - 1);
+  }
+  capsulePairs_.swap(sortedPairs_);
+}
+
 void RopeWorld::substep(double h) {
   // Candidate bodies per rope from Bullet's pair cache. The cache may still hold pairs whose boxes
   // stopped overlapping (it cleans up lazily), so the overlap is checked again.
@@ -150,9 +177,7 @@ void RopeWorld::substep(double h) {
   // Rope-rope and self-contact, coupled into the trials of all ropes at once; pairs in a fixed order
   // (the pair cache's order depends on pointer hashes).
   const auto ropeStart = std::chrono::steady_clock::now();
-  std::sort(capsulePairs_.begin(), capsulePairs_.end(), [](const RopeCapsulePair& a, const RopeCapsulePair& b) {
-    return std::tie(a.ropeA, a.capsuleA, a.ropeB, a.capsuleB) < std::tie(b.ropeA, b.capsuleA, b.ropeB, b.capsuleB);
-  });
+  sortCapsulePairs();
   const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
   if (ropeContacts < 0) report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
   for (std::size_t r = 0; r < ropes_.size(); ++r) {

@@ -62,6 +62,10 @@ class RopeWorld {
   std::vector<RopeObject*> ropes_;
   std::vector<std::vector<const btCollisionObject*>> candidates_;  // per rope, scratch
   std::vector<RopeCapsulePair> capsulePairs_;                       // scratch
+  std::vector<RopeCapsulePair> sortedPairs_;                        // scratch of sortCapsulePairs
+  std::vector<int> pairBuckets_, ropeOffsets_, bucketFill_;        // scratch of sortCapsulePairs
+  // Puts capsulePairs_ in (ropeA, capsuleA, ropeB, capsuleB) order in O(pairs + capsules).
+  void sortCapsulePairs();
   RopeRopeContacts ropeRopeContacts_;
   ContactReport report_;
   std::function<void(const ContactReport&)> callback_;

@@ -4,6 +4,7 @@
 // EMPTY_SHAPE_PROXYTYPE, for which Bullet's collision configurations create no contact-generating
 // algorithm (and whose processAllTriangles yields nothing, so Bullet's own ray and contact tests
 // ignore it). The rope's own narrowphase handles every pair the box takes part in.
+// Not API: installed only because capsule_proxies.h and kinematic_rope.h hold it; may change in any release.
 
 #include <BulletCollision/CollisionShapes/btEmptyShape.h>
 

@@ -15,9 +15,6 @@ RodSettings DrapeSceneSettings::defaultRod() {
   rod.bendingStiffness = 1.0e-3;  // N m^2: a limp rope that drapes (the solid-rod value is 1.6 N m^2)
   rod.massDamping = 0.2;
   rod.initialControlPoints = 16;
-  // Contacts get knots (BulletRopeSettings::contactKnotSpacing), so a rope lying along a face refines
-  // towards ~2 cm spans; the cap bounds the cost.
-  rod.maxControlPoints = 64;
   return rod;
 }
 

@@ -26,16 +26,25 @@ PhysicsWorld::~PhysicsWorld() {
 }
 
 btRigidBody* PhysicsWorld::addBox(const btVector3& halfExtents, double mass, const btTransform& transform) {
-  shapes_.push_back(std::make_unique<btBoxShape>(halfExtents));
-  btCollisionShape* shape = shapes_.back().get();
+  return addBody(std::make_unique<btBoxShape>(halfExtents), mass, transform);
+}
+
+btRigidBody* PhysicsWorld::addBody(std::unique_ptr<btCollisionShape> shape, double mass, const btTransform& transform) {
+  shapes_.push_back(std::move(shape));
+  btCollisionShape* added = shapes_.back().get();
   btVector3 inertia(0, 0, 0);
-  if (mass > 0) shape->calculateLocalInertia(static_cast<btScalar>(mass), inertia);
-  btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), nullptr, shape, inertia);
+  if (mass > 0) added->calculateLocalInertia(static_cast<btScalar>(mass), inertia);
+  btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), nullptr, added, inertia);
   info.m_startWorldTransform = transform;
   info.m_friction = btScalar(0.5);
   bodies_.push_back(std::make_unique<btRigidBody>(info));
   world_->addRigidBody(bodies_.back().get());
   return bodies_.back().get();
+}
+
+btRigidBody* PhysicsWorld::addStaticMesh(std::unique_ptr<btTriangleMesh> mesh, const btTransform& transform) {
+  triangleMeshes_.push_back(std::move(mesh));
+  return addBody(std::make_unique<btBvhTriangleMeshShape>(triangleMeshes_.back().get(), true), 0.0, transform);
 }
 
 btRigidBody* PhysicsWorld::addBox(const btVector3& halfExtents, double mass, const btVector3& origin) {

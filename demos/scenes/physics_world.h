@@ -33,6 +33,10 @@ class PhysicsWorld {
   btRigidBody* addBox(const btVector3& halfExtents, double mass, const btVector3& origin);
   // The static ground plane y = height.
   btRigidBody* addGround(double height = 0.0);
+  // A body of any shape (the world keeps the shape); mass 0 makes it static. Friction 0.5.
+  btRigidBody* addBody(std::unique_ptr<btCollisionShape> shape, double mass, const btTransform& transform);
+  // A static triangle mesh (btBvhTriangleMeshShape over `mesh`, which the world keeps). Friction 0.5.
+  btRigidBody* addStaticMesh(std::unique_ptr<btTriangleMesh> mesh, const btTransform& transform);
 
   // Draws the rigid bodies (planes as the ground), leaving out the ropes' capsules (dynamic and kinematic).
   void draw(render::Scene& scene) const;
@@ -44,6 +48,7 @@ class PhysicsWorld {
   std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
   std::unique_ptr<btDiscreteDynamicsWorld> world_;
   std::unique_ptr<bullet::RopeWorld> ropes_;
+  std::vector<std::unique_ptr<btTriangleMesh>> triangleMeshes_;  // before shapes_: the mesh shapes point into them
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
   mutable render::ShapeMeshCache meshes_;

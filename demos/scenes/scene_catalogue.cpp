@@ -1,14 +1,27 @@
+#include "demos/scenes/capstan_scene.h"
 #include "demos/scenes/crane_scene.h"
 #include "demos/scenes/cut_scene.h"
 #include "demos/scenes/demo_scene.h"
 #include "demos/scenes/drape_scene.h"
+#include "demos/scenes/floor_pull_scene.h"
 #include "demos/scenes/hang_scene.h"
 #include "demos/scenes/knot_scene.h"
 #include "demos/scenes/pile_scene.h"
+#include "demos/scenes/resting_rope_scene.h"
 #include "demos/scenes/sweep_scene.h"
 #include "demos/scenes/tractrix_scene.h"
 
 namespace rope::demos {
+
+namespace {
+
+CapstanSceneSettings capstanDemoSettings() {
+  CapstanSceneSettings settings;
+  settings.loadRatio = 2.0;
+  return settings;
+}
+
+}  // namespace
 
 const std::vector<SceneEntry>& sceneCatalogue() {
   static const std::vector<SceneEntry> catalogue = {
@@ -33,6 +46,15 @@ const std::vector<SceneEntry>& sceneCatalogue() {
        8.0, [] { return std::unique_ptr<DemoScene>(new CraneScene(CraneSceneSettings{})); }},
       {"cut", "Bullet world: a box swinging on a rope; the rope is cut at 1 s, the box falls, the top piece swings on",
        3.0, [] { return std::unique_ptr<DemoScene>(new CutScene(CutSceneSettings{})); }},
+      {"capstan",
+       "Bullet world: a rope over a 5 cm cylinder, wrapped by half a turn, mu 0.3, loads 10 N and 5 N (ratio 2, "
+       "below exp(0.3 pi) = 2.57: it should hold)",
+       3.0, [] { return std::unique_ptr<DemoScene>(new CapstanScene(capstanDemoSettings())); }},
+      {"floorpull",
+       "Bullet world: a rope on a box pulled along it by a distributed 6 N/kg against friction 0.5 (Coulomb: 1.095 m/s after 1 s)",
+       1.5, [] { return std::unique_ptr<DemoScene>(new FloorPullScene(FloorPullSceneSettings{})); }},
+      {"rest", "Bullet world: a straight rope lying at rest on a box (default settings)",
+       2.0, [] { return std::unique_ptr<DemoScene>(new RestingRopeScene(RestingRopeSceneSettings{})); }},
   };
   return catalogue;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// Adaptivity criteria on the control polygon ([A] §4, [B] §3, spec §3). Pure functions; Rod::step()
+// Adaptivity criteria on the control polygon ([A] §4, [B] §3; docs/method.md §10). Pure functions; Rod::step()
 // applies them after each integration step (rod_adaptivity.cpp).
 //
 // Insertion: the polygon side q_i q_{i+1} is refined when the bend measure c ([A] eq. 13) at either of

@@ -1,10 +1,11 @@
 #pragma once
-// Symmetric block-banded matrix with its in-place banded Cholesky factorisation (spec §2: "a banded
-// Cholesky/LDL^T solves it in O(n)"). Blocks are b x b (b = 1 for the scalar mass matrix, b = 3 for
+// Symmetric block-banded matrix with its in-place banded Cholesky factorisation (docs/method.md §8:
+// eq. 22 is solved in O(n)). Blocks are b x b (b = 1 for the scalar mass matrix, b = 3 for
 // the rod's system); blocks (i, j) with |i - j| <= d may be non-zero, so in scalars the half bandwidth
 // is w = b (d + 1) - 1. Only the lower band is stored: N (w + 1) doubles, no dense N x N anywhere.
 // Factorising costs O(N w^2), a solve O(N w). Failure (a non-positive or non-finite pivot) is
 // reported, never turned into NaN.
+// Not API: installed only because rope/rod/rod.h holds one; it may change in any release.
 
 #include <vector>
 

@@ -1,15 +1,15 @@
 #pragma once
-// Point constraints on the curve ([A] §5.1 "6 constraints to fix the two extremities", spec §2
-// "Constraints"): a pin holds C(s*) = sum_i b_i(s*) q_i at a target. It is linear in q, so with the
+// Point constraints on the curve (docs/method.md §9, eqs. 25–26; [A] §5.1 "6 constraints to fix the
+// two extremities"): a pin holds C(s*) = sum_i b_i(s*) q_i at a target. It is linear in q, so with the
 // implicit step q_new = q + h (v + dv) it becomes three rows on dv:
 //   sum_i b_i(s*) dv_i = (target - C(s*)) / h - Cdot(s*),
 // i.e. the end-of-step position is exactly the target (moving targets included): the position error
 // is folded into the velocity-level constraint, so pins never drift.
 //
-// A clamp (a weld) is a pin that also holds the curve's tangent at s* along a unit direction d. The
-// tangent condition is imposed as P C'(s*) = 0 with P = I - d d^T, i.e. two rows e_k . C'(s*) = 0
-// for an orthonormal pair e_1, e_2 orthogonal to d. Like the pin it is linear in q, so on the
-// end-of-step positions it reads
+// A clamp (a weld; docs/method.md §9) is a pin that also holds the curve's tangent at s*
+// along a unit direction d. The tangent condition is imposed as P C'(s*) = 0 with P = I - d d^T,
+// i.e. two rows e_k . C'(s*) = 0 for an orthonormal pair e_1, e_2 orthogonal to d. Like the pin it is
+// linear in q, so on the end-of-step positions it reads
 //   sum_i b_i'(s*) e_k . dv_i = -(e_k . C'(s*)) / h - e_k . Cdot'(s*),
 // and holds exactly at the end of every step: nothing is linearised, nothing drifts, and a direction
 // that moves (a turning nozzle) is reached at the end of the step like a moving pin's target. The
@@ -26,6 +26,7 @@
 // A row's column of G^T is zero before the constraint's first control point, so its forward
 // substitution starts there: a pin at the far end costs O(1), one at the near end O(n). The
 // Schur matrix (3 rows per pin, 5 per clamp) is the only dense matrix (few constraints).
+// Not API (except Pin, which Rod::pins() returns): installed only because rope/rod/rod.h holds a solver.
 
 #include <vector>
 

@@ -16,11 +16,21 @@ namespace rope {
 
 namespace {
 
+// No arithmetic on the values (inf - inf would raise FE_INVALID under FP traps).
+bool allFiniteEntries(const double* values, int count) {
+  for (int i = 0; i < count; ++i)
+    if (!std::isfinite(values[i])) return false;
+  return true;
+}
+
+// The names are built only for a failing value: these checks run for every load, every step.
 void requireFiniteVector(const std::string& name, const Vec3& value) {
+  if (allFiniteEntries(value.data(), 3)) return;
   for (int axis = 0; axis < 3; ++axis) requireFinite(name + "[" + std::to_string(axis) + "]", value[axis]);
 }
 
 void requireFiniteMatrix(const std::string& name, const Eigen::Matrix3d& value) {
+  if (allFiniteEntries(value.data(), 9)) return;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
       requireFinite(name + "(" + std::to_string(r) + "," + std::to_string(c) + ")", value(r, c));
@@ -162,6 +172,11 @@ double Rod::strain(double s) const {
   const double rest = evaluateCurve(knots_, rest_, s).firstDerivative.norm();
   const double current = evaluateCurve(knots_, points_, s).firstDerivative.norm();
   return rest > 0.0 ? current / rest - 1.0 : 0.0;
+}
+
+double Rod::restMetric(double s) const {
+  validateParameter(s);
+  return evaluateCurve(knots_, rest_, s).firstDerivative.norm();
 }
 
 double Rod::mass() const {
@@ -371,12 +386,23 @@ void Rod::addImpulse(double s, const Vec3& impulse) {
 
 void Rod::addSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
                     const Eigen::Matrix3d& damping) {
+  queueSpring(s, force, stiffness, damping, true);
+}
+
+void Rod::addSpringSample(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
+                          const Eigen::Matrix3d& damping) {
+  queueSpring(s, force, stiffness, damping, false);
+}
+
+void Rod::queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping,
+                      bool interaction) {
   validateParameter(s);
   requireFiniteVector("force", force);
   requireFiniteMatrix("stiffness", stiffness);
   requireFiniteMatrix("damping", damping);
   // Only the symmetric part is meaningful for a potential/dissipative interaction.
-  springs_.push_back({s, force, 0.5 * (stiffness + stiffness.transpose()), 0.5 * (damping + damping.transpose())});
+  springs_.push_back({s, force, 0.5 * (stiffness + stiffness.transpose()), 0.5 * (damping + damping.transpose()),
+                      interaction});
   trialValid_ = false;
 }
 
@@ -466,7 +492,8 @@ StepReport Rod::commitTrial() {
   }
   interactions_.clear();
   for (const PointLoad& load : loads_) interactions_.push_back(load.parameter);
-  for (const Spring& spring : springs_) interactions_.push_back(spring.parameter);
+  for (const Spring& spring : springs_)
+    if (spring.interaction) interactions_.push_back(spring.parameter);
   interactions_.insert(interactions_.end(), markedInteractions_.begin(), markedInteractions_.end());
   points_.swap(newPoints_);
   velocities_.swap(newVelocities_);

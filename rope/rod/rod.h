@@ -1,5 +1,5 @@
 #pragma once
-// The dynamic adaptive rod ([A] §3–5, spec §2–3): a B-spline curve whose control points are the
+// The dynamic adaptive rod ([A] §3–5; docs/method.md §5–§10): a B-spline curve whose control points are the
 // degrees of freedom, with mass and gravity from a continuous linear density, Green–Lagrange
 // stretching ([A] eq. 11), a continuous bending energy (bending_energy.h), a linearised backward-Euler
 // step solved by a block-banded Cholesky in O(n), pins and clamps (pin + tangent direction) by
@@ -9,7 +9,7 @@
 // Units: metres, seconds, kilograms, newtons. The curve parameter s runs over
 // [beginParameter(), endParameter()]; for ropes created from a segment it is the rest arclength.
 //
-// Step: (M + hD + h^2 K) dv = h (F + f_ext - D v - h K v), v += dv, q += h v (spec §2), with
+// Step: (M + hD + h^2 K) dv = h (F + f_ext - D v - h K v), v += dv, q += h v (method §8, eqs. 22–23), with
 // D = massDamping M + stiffnessDamping K (Rayleigh), K the stretching stiffness with the Gauss–Newton
 // clamp plus the constant bending stiffness, and pins and clamps imposed on the end-of-step positions.
 // Then adaptivity ([A] §4): knots at interaction points, insertion where the control polygon bends
@@ -28,8 +28,12 @@
 //       current state, K_c = -df/dx and D_c = -df/du (3x3, symmetric positive semidefinite for
 //       stability). It adds b_i(s) b_j(s) (h^2 K_c + h D_c) to the system and h b_i(s) (f0 - h K_c u)
 //       to the right-hand side, exactly like the rod's own stiffness: contact treated implicitly.
-// Interaction points (pins, clamps, forces, impulses, springs) also get a knot at s when adaptive; a
-// clamp also keeps the nearest knot on either side, so that no removal turns its tangent.
+//   addSpringSample(s, f0, K_c, D_c)  the same, for one quadrature sample of a distributed load (a
+//       line contact, docs/method.md): it enters the system identically but is not an interaction
+//       point, so it does not ask adaptivity for a knot at s.
+// Interaction points (pins, clamps, forces, impulses, springs, markInteraction) also get a knot at s
+// when adaptive; a clamp also keeps the nearest knot on either side, so that no removal turns its
+// tangent.
 
 #include <utility>
 #include <vector>
@@ -105,6 +109,9 @@ class Rod {
   double restLength() const;     // m
   double maxStrain() const;      // largest |C'|/l0' - 1 over the quadrature points
   double strain(double s) const; // |C'(s)|/l0'(s) - 1 (throws InvalidArgument("s", ...) like position)
+  // Rest length per unit parameter, dl0/ds = |C0'(s)| (1 for ropes created from a segment, whose
+  // parameter is the rest arclength). Throws InvalidArgument("s", ...) like position.
+  double restMetric(double s) const;
   double mass() const;           // kg
   Vec3 momentum() const;         // kg m/s
   double kineticEnergy() const;  // J, (1/2) v^T M v
@@ -152,6 +159,8 @@ class Rod {
   void addImpulse(double s, const Vec3& impulse);
   void addSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
                  const Eigen::Matrix3d& damping);
+  void addSpringSample(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
+                       const Eigen::Matrix3d& damping);
   void clearLoads();
 
   // One step of h seconds (finite, > 0, else InvalidArgument "h"): solveTrial(h), then commitTrial()
@@ -203,7 +212,10 @@ class Rod {
     Vec3 force;
     Eigen::Matrix3d stiffness;
     Eigen::Matrix3d damping;
+    bool interaction;  // false for a quadrature sample of a distributed load (no knot)
   };
+  void queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping,
+                   bool interaction);
 
   Rod(const RodSettings& settings, KnotVector knots, PointList points, PointList velocities,
       PointList rest, int gaussCount);

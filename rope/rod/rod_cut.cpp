@@ -1,4 +1,4 @@
-// Rod: cutting ([A] §5.1, spec §1): raising the multiplicity of s to d+1 by exact insertion makes the
+// Rod: cutting ([A] §5.1; docs/method.md §4): raising the multiplicity of s to d+1 by exact insertion makes the
 // curve C^-1 there; no basis function spans s, so the two sides share no mass, energy or force term and
 // become two independent rods. Positions, velocities and the rest curve follow the same exact map, so
 // mass, momentum and every energy are split without loss.

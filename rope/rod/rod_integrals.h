@@ -1,22 +1,23 @@
 #pragma once
-// The rod's constant integrals (spec §2, [A] eqs. 10–12 and §4.2), kept per knot span so that storage
-// is linear in n and a knot insertion or removal recomputes only the O(d) spans it touches.
+// The rod's constant integrals (docs/method.md §5–§7, [A] eqs. 10–12 and §4.2), kept per knot span so that
+// storage is linear in n and a knot insertion or removal recomputes only the O(d) spans it touches.
 //
 // Rest metric: l0'(s) = |C0'(s)| of a rest curve C0 that is refined with the same knot plans as the
 // state, so the material (mass, rest length, stiffness distribution) is a property of s alone and never
-// of the resolution ([A] §3.2, spec §2 "Rest metric").
+// of the resolution ([A] §3.2; docs/method.md §5, eq. 10).
 //
 // Per span and stretching quadrature point g (weight w_g, Jacobian J = span length / 2) we store
 //   b'_a(s_g) for the d+1 non-zero basis functions, W1_g = w_g J / l0'(s_g), W3_g = w_g J / l0'(s_g)^3.
-// These are the spec's stretching integrals in factored form:
+// These are the stretching integrals of docs/method.md §6 (eq. 15) in factored form:
 //   B_im   = sum_g W1_g b'_i b'_m,    B_impq = sum_g W3_g b'_i b'_m b'_p b'_q,
 // i.e. exactly the Gauss–Legendre value of the integrals (exact when l0' is constant: the quartic
 // product has degree 4(d-1) and 2d-1 points integrate degree 4d-3). Contracting the factored form costs
 // O(G d) per span instead of O(d^4), and it gives the strain at each point, which the Gauss–Newton
-// clamp of the stiffness needs (spec §2). B2()/B4() rebuild the tensor entries for tests.
+// clamp of the stiffness needs (method §6, eq. 17). B2()/B4() rebuild the tensor entries for tests.
 // Also per span: the local mass matrix mu int b_a b_b l0' ds ([A] eq. 10), the local bending matrix
 // EI int b_a'' b_b'' / l0'^3 ds (bending_energy.h), the gravity weights mu int b_a l0' ds and the rest
 // length int l0' ds.
+// Not API: installed only because rope/rod/rod.h holds the integrals; it may change in any release.
 
 #include <vector>
 
@@ -69,7 +70,7 @@ class RodIntegrals {
   double linearDensity() const { return linearDensity_; }
   double bendingStiffness() const { return bendingStiffness_; }
 
-  // Spec §2 tensor entries rebuilt from the factored form (tests, diagnostics; O(n)).
+  // The tensor entries of docs/method.md eq. 15 rebuilt from the factored form (tests, diagnostics; O(n)).
   double B2(int i, int m) const;
   double B4(int i, int m, int p, int q) const;
 

@@ -1,5 +1,5 @@
 #pragma once
-// What a user configures for a dynamic rod ([A] §3.2–4, spec §2–3): material, discretisation and
+// What a user configures for a dynamic rod ([A] §3.2–4; docs/method.md §5–§10): material, discretisation and
 // adaptivity. SI units throughout. The rod copies the settings at creation; what a step changes
 // (control points, velocities, knots, pins) lives in the Rod itself.
 
@@ -7,9 +7,9 @@
 
 namespace rope {
 
-// How the stretching integral (spec §2) is sampled per knot span.
+// How the stretching integral (docs/method.md §6–§7) is sampled per knot span.
 enum class StretchingQuadrature {
-  // Exact Gauss–Legendre (2d-1 points per span): B_im and B_impq exactly as in spec §2, the energy
+  // Exact Gauss–Legendre (2d-1 points per span): B_im and B_impq exactly as in method eq. 15, the energy
   // exactly additive and refinement-invariant. Like every exactly integrated displacement-based rod it
   // suffers membrane locking: ~2d-1 length conditions per span against about one control point's worth
   // of freedom per span, so a stiff rope (EA >> its weight) cannot bend into its equilibrium with few
@@ -41,7 +41,7 @@ struct RodSettings {
   double youngsModulus = 1.0e9;    // Pa, > 0. Stretching stiffness EA = youngsModulus * A.
   double bendingStiffness = kDerived;  // N m^2, >= 0, or kDerived: EI = youngsModulus * pi r^4 / 4.
                                        // 0 reproduces [A], which had stretching only.
-  // Rayleigh damping D = massDamping * M + stiffnessDamping * K (spec §2). Both >= 0.
+  // Rayleigh damping D = massDamping * M + stiffnessDamping * K (docs/method.md eq. 20). Both >= 0.
   double massDamping = 0.0;        // 1/s
   double stiffnessDamping = 0.0;   // s
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  // m/s^2, finite (y up, as in Bullet's demos)
@@ -51,7 +51,7 @@ struct RodSettings {
   int initialControlPoints = 16;   // ropes created from a segment; in [minControlPoints, maxControlPoints]
   StretchingQuadrature stretchingQuadrature = StretchingQuadrature::kLockingFree;
 
-  // ---- adaptivity ([A] §4, spec §3) ----
+  // ---- adaptivity ([A] §4; docs/method.md §10) ----
   bool adaptive = true;            // false: the knot vector only changes on explicit request
   int minControlPoints = 4;        // >= degree + 1
   int maxControlPoints = 128;      // >= minControlPoints

@@ -1,16 +1,16 @@
 #pragma once
-// Green–Lagrange stretching ([A] eqs. 11–12, spec §2):
+// Green–Lagrange stretching ([A] eqs. 11–12; docs/method.md §6, eqs. 13–17):
 //   E = (EA/8) int (gamma^2 - 1)^2 l0' ds,  gamma = |C'(s)| / l0'(s),
 //   F_i = (EA/2) sum_m q_m [B_im - sum_pq B_impq q_p.q_q],
 //   K_im = (EA/2) [(sum_pq B_impq q_p.q_q - B_im) I + 2 sum_ac B_imac q_a q_c^T]   (exact Hessian).
 // In the factored form of rod_integrals.h, at each Gauss point with t = W3 |C'|^2 - W1
 // (= w J (gamma^2 - 1) / l0'), the point contributes F_a = -(EA/2) t b'_a C' and
 // K_ab = b'_a b'_b [(EA/2) t I + EA W3 C' C'^T].
-// The kernel works on whatever points the integrals hold: the exact rule (spec §2) or the
+// The kernel works on whatever points the integrals hold: the exact rule (method §7) or the
 // locking-free reduced rule (StretchingQuadrature in rod_settings.h); force and stiffness are always
 // the exact derivatives of the energy as sampled.
 // Under compression (t < 0) the first term makes K indefinite; the Gauss–Newton clamp replaces t by
-// max(t, 0) there (spec §2: "drop the negative part"), which leaves K positive semidefinite, so that
+// max(t, 0) there (method eq. 17: drop the negative part), which leaves K positive semidefinite, so that
 // M + hD + h^2 K stays positive definite. The exact Hessian is kept for tests and diagnostics.
 
 #include <Eigen/Core>

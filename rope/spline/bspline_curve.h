@@ -1,5 +1,5 @@
 #pragma once
-// A B-spline curve C(s) = sum_i q_i b_{i,d}(s) in R^3 (spec §1). Positions in metres.
+// A B-spline curve C(s) = sum_i q_i b_{i,d}(s) in R^3 (docs/method.md §1, eq. 1). Metres.
 
 #include <utility>
 #include <vector>

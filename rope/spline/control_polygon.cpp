@@ -32,7 +32,7 @@ double bendMeasure(const PointList& points, int i) {
   sides(points, i, a, b);
   const double lengths = a.norm() * b.norm();
   if (!(lengths > 0.0)) return 0.0;  // a zero-length side has no direction to bend
-  // [A] eq. 13 with the corrected sign (spec §3); the clamp absorbs rounding of |cos| past 1.
+  // [A] eq. 13 with the corrected sign (docs/method.md eq. 27); the clamp absorbs rounding of |cos| past 1.
   const double cosine = std::clamp(a.dot(b) / lengths, -1.0, 1.0);
   return 0.5 * (1.0 - cosine);
 }
@@ -54,7 +54,7 @@ double bendMeasureFromAngle(double includedAngleRadians) {
   if (includedAngleRadians < 0.0 || includedAngleRadians > pi) {
     throw InvalidArgument("includedAngleRadians", formatValue(includedAngleRadians), "must be in [0, pi]");
   }
-  return 0.5 * (1.0 + std::cos(includedAngleRadians));  // [B] / spec §3: c = (1 + cos theta) / 2
+  return 0.5 * (1.0 + std::cos(includedAngleRadians));  // [B]; docs/method.md eq. 28
 }
 
 double angleFromBendMeasure(double bendMeasure) {

@@ -1,5 +1,5 @@
 #pragma once
-// Measures on the control polygon used by adaptivity ([A] eq. 13, [B] §3, spec §3).
+// Measures on the control polygon used by adaptivity ([A] eq. 13, [B] §3; docs/method.md §10).
 
 #include "rope/common/types.h"
 

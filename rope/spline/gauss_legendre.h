@@ -1,6 +1,6 @@
 #pragma once
 // Gauss–Legendre quadrature rules on [-1, 1]. An n-point rule integrates polynomials of degree
-// 2n-1 exactly; the rod's integrals (spec §2) pick n from the polynomial degree of their integrand.
+// 2n-1 exactly; the rod's integrals (docs/method.md §7) pick n from the polynomial degree of their integrand.
 
 namespace rope {
 

@@ -1,5 +1,5 @@
 #pragma once
-// Boehm's single-knot insertion ([A] §3.1 eqs. 2–6, spec §1). Inserting s* into span k
+// Boehm's single-knot insertion ([A] §3.1 eqs. 2–6; docs/method.md §2). Inserting s* into span k
 // (s_k <= s* < s_{k+1}) replaces q_{k-d+1..k} by
 //   q'_i = a_i q_i + (1 - a_i) q_{i-1},   a_i = (s* - s_i) / (s_{i+d} - s_i),
 // keeps q'_i = q_i for i <= k-d and shifts q'_{i+1} = q_i for i >= k. The curve is exactly unchanged.

@@ -61,7 +61,9 @@ double lengthChange(const KnotVector& knots, const PointList& points, int lo, co
 
 }  // namespace
 
-KnotRemoval planKnotRemoval(const KnotVector& knots, const PointList& points, double s) {
+namespace {
+
+KnotRemoval planRemoval(const KnotVector& knots, const PointList& points, double s, bool withLength) {
   requireFinite("s", s);
   if (!(s > knots.validBegin() && s < knots.validEnd())) {
     throw InvalidArgument("s", formatValue(s),
@@ -128,11 +130,22 @@ KnotRemoval planKnotRemoval(const KnotVector& knots, const PointList& points, do
     }
     if (!std::isfinite(shape)) throw NumericalFailure("knot removal at s = " + formatValue(s) + " overflowed");
     removal.shapeError[static_cast<size_t>(side)] = shape;
-    removal.lengthError[static_cast<size_t>(side)] = lengthChange(knots, points, lo, delta, a, b);
+    if (withLength) removal.lengthError[static_cast<size_t>(side)] = lengthChange(knots, points, lo, delta, a, b);
   }
+  if (!withLength) return removal;
   // [B] §3.2: keep the candidate with the smaller length error; ties go to the left sweep.
   removal.chosen = removal.lengthError[1] < removal.lengthError[0] ? KnotRemoval::kFromRight : KnotRemoval::kFromLeft;
   return removal;
+}
+
+}  // namespace
+
+KnotRemoval planKnotRemoval(const KnotVector& knots, const PointList& points, double s) {
+  return planRemoval(knots, points, s, true);
+}
+
+KnotRemoval planKnotRemovalShape(const KnotVector& knots, const PointList& points, double s) {
+  return planRemoval(knots, points, s, false);
 }
 
 KnotRemoval removeKnot(KnotVector& knots, PointList& points, double s) {

@@ -61,6 +61,12 @@ struct KnotRemoval {
 // not matching the knots or leaving fewer than degree+1 control points after removal.
 KnotRemoval planKnotRemoval(const KnotVector& knots, const PointList& points, double s);
 
+// The same plan with the shape errors of both sides only (lengthError left at 0 and chosen at
+// kFromLeft): about a tenth of the cost, since the length errors integrate the arc length over 2d+2
+// spans. min(shapeError) bounds the chosen side's shape error from below, so a removal whose
+// min(shapeError) exceeds a bound can be rejected on this alone.
+KnotRemoval planKnotRemovalShape(const KnotVector& knots, const PointList& points, double s);
+
 // Plans and applies the chosen candidate to knots and points together. All-or-nothing.
 KnotRemoval removeKnot(KnotVector& knots, PointList& points, double s);
 

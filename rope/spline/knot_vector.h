@@ -1,5 +1,5 @@
 #pragma once
-// Knot vector of a B-spline ([A] §3.1, spec §1): s_0 <= s_1 <= ... <= s_{n+d} for n control points of
+// Knot vector of a B-spline ([A] §3.1; docs/method.md §1): s_0 <= s_1 <= ... <= s_{n+d} for n control points of
 // degree d. The curve is defined on the valid range [s_d, s_n]. Clamped (open) vectors repeat the end
 // knots d+1 times so that the curve ends on its first and last control points; unclamped ones do not
 // ([A]'s own example: {0, 1, ..., 14} for 11 cubic control points). Parameters are dimensionless

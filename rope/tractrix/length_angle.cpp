@@ -37,7 +37,7 @@ double pieceSpeed(LengthAngleModel model, const Vec3 (&p)[4], double u) {
     // [B] eq. 4: N1' = -(1-u), N2' = 1 - 2u, N3' = u.
     velocity = -(1.0 - u) * p[0] + (1.0 - 2.0 * u) * p[1] + u * p[2];
   } else {
-    // [B] eq. 10 derivatives (spec §4 gives the corrected N4 = u^3/6).
+    // [B] eq. 10 derivatives (docs/method.md eq. 44: the corrected N4 = u^3/6).
     const double n1 = -0.5 * (1.0 - u) * (1.0 - u);
     const double n2 = 1.5 * u * u - 2.0 * u;
     const double n3 = -1.5 * u * u + u + 0.5;

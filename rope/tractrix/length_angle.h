@@ -1,5 +1,5 @@
 #pragma once
-// How much shorter a B-spline piece gets as the control polygon bends ([B] §2.2–2.3, spec §4), and
+// How much shorter a B-spline piece gets as the control polygon bends ([B] §2.2–2.3; docs/method.md §14), and
 // the inverse: which angle thresholds keep that shortfall within a tolerance ([B] §3.1–3.2).
 //
 // All relations use equal sides (L = 1, the result is relative so L cancels) and uniform knots, and

@@ -1,12 +1,15 @@
 #pragma once
+// Not API: installed only because rope/tractrix/tractrix_rope.h holds its workspace (the setting is
+// TractrixSettings::lengthCorrection).
+//
 // Keeping a tractrix spline's curve length (beyond [B]). The tractrix pass keeps the control
 // polygon's sides, but the curve is shorter than its polygon where the polygon bends ([B] §2.2), and
 // subdivision cuts corners (shortening the polygon) while leaving the curve as it is. The tractrix
 // then keeps the shorter polygon, so a rope dragged round tight bends loses length step after step
 // (measured: [B]'s TRX_SD_MRG lost up to 16.8 % on a 270° loop, 22.6 % on `ropesim tractrix`).
 //
-// The correction re-lays the polygon from its leading point q_0, keeping every side's direction u_i
-// and scaling side i by (1 + c w_i):
+// The correction (docs/method.md §14) re-lays the polygon from its leading point q_0,
+// keeping every side's direction u_i and scaling side i by (1 + c w_i):
 //   q_0' = q_0,   q_{i+1}' = q_i' + (1 + c w_i) |q_{i+1} - q_i| u_i,
 // so q_i' = q_i + c D_i with D_i = sum_{k<i} w_k (q_{k+1} - q_k): the new polygon is linear in c, the
 // curve is C + c C_D, and its length L(c) = integral |C' + c C_D'| ds is convex in c. Newton's method

@@ -52,7 +52,7 @@ int subdivideSharpCorners(KnotVector& knots, PointList& points, double subdivisi
     bool inserted = false;
     for (const int corner : sharp) {
       // Inserting into span k replaces the corners q_{k-d+1} .. q_{k-1} by d points on their sides
-      // (Boehm, spec §1), so the corner is cut by the spans k = corner+1 .. corner+d-1 inside d .. n-1.
+      // (Boehm, method eq. 4), so the corner is cut by the spans k = corner+1 .. corner+d-1 inside d .. n-1.
       // Of those, take the one whose cut corners are the most bent on average: it opens the most.
       int bestSpan = -1;
       double bestScore = std::numeric_limits<double>::infinity();

@@ -1,5 +1,5 @@
 #pragma once
-// Angle-threshold adaptation of a B-spline control polygon ([B] §3.1–3.3, spec §3–4): subdivision
+// Angle-threshold adaptation of a B-spline control polygon ([B] §3.1–3.3; docs/method.md §13): subdivision
 // (knot insertion) cuts corners whose included angle is below a threshold, which leaves the curve
 // exactly as it was and shortens the polygon; merging (knot removal) drops a knot where the polygon
 // is nearly straight, which lengthens the polygon and moves the curve by the removal error. Both use

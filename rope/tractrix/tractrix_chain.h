@@ -1,5 +1,5 @@
 #pragma once
-// The tractrix chain pass ([B] §2.1, spec §4): the leading point of a chain of rigid segments moves
+// The tractrix chain pass ([B] §2.1; docs/method.md §13): the leading point of a chain of rigid segments moves
 // to a target; each segment's trailing point follows by the closed-form tractrix
 // (tractrix_segment.h), and the new trailing point of segment i is the new leading point of segment
 // i+1. One pass is O(n). Every segment keeps its length, and displacements decay along the chain:

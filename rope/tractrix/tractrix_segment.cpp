@@ -26,7 +26,7 @@ void requireTractrixCoordinate(const std::string& parameter, double value) {
 Vec3 tractrixMoveTrailing(const Vec3& leading, const Vec3& trailing, const Vec3& newLeading, double length) {
   const Vec3 delta = newLeading - leading;
   double q = delta.norm();
-  if (q == 0.0) return trailing;  // spec §4: q = 0 moves nothing
+  if (q == 0.0) return trailing;  // docs/method.md §13: q = 0 moves nothing
   Vec3 u;
   if (q < kTinyDisplacement) {
     const Vec3 scaled = delta * 1e200;
@@ -48,7 +48,7 @@ Vec3 tractrixMoveTrailing(const Vec3& leading, const Vec3& trailing, const Vec3&
     den = s;
   }
   if (den == 0.0) return newLeading + length * u;  // alpha = pi exactly: the segment translates
-  // [B] eq. 1 in angle form (spec §4): tan(alpha'/2) = tan(alpha/2) exp(-q/L). Underflow of the
+  // [B] eq. 1 in angle form (docs/method.md eq. 38): tan(alpha'/2) = tan(alpha/2) exp(-q/L). Underflow of the
   // exponential to 0 is the correct limit (the segment has aligned with u).
   const double numNew = num * std::exp(-q / length);
   double cosNew;

@@ -1,5 +1,5 @@
 #pragma once
-// Closed-form tractrix motion of one rigid segment ([B] §2.1 eq. 1; spec §4).
+// Closed-form tractrix motion of one rigid segment ([B] §2.1 eq. 1; docs/method.md §13, eqs. 38–40).
 //
 // A segment of length L has a leading point a and a trailing point b. When a moves along the straight
 // line to a' = a + q u (|u| = 1), the trailing point moves along the segment with speed (da/dt . t),

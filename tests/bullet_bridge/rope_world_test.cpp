@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <string>
 #include <limits>
 
 #include "demos/scenes/drape_scene.h"
@@ -259,7 +261,7 @@ TEST(RopeWorld, BadInputThrowsAndChangesNothing) {
   EXPECT_THROW(rope.setAttachmentTarget(pin, btVector3(0, btScalar(nan), 0)), InvalidArgument);
   EXPECT_THROW(stranger.attachToBody(0.5, *inside, btVector3(0, 0, 0)), InvalidArgument);  // rope in no world
   BulletRopeSettings bad;
-  bad.contactStiffness = nan;
+  bad.lineContactStiffness = nan;
   EXPECT_THROW(RopeObject(Rod::fromSegment(limpRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)), bad), InvalidArgument);
   bad = BulletRopeSettings();
   bad.speculativeDamping = -1.0;
@@ -267,6 +269,26 @@ TEST(RopeWorld, BadInputThrowsAndChangesNothing) {
   bad = BulletRopeSettings();
   bad.capsulesPerSpan = 0;
   EXPECT_THROW(RopeObject(Rod::fromSegment(limpRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)), bad), InvalidArgument);
+  // The line-contact settings: each out-of-range value is refused naming its field.
+  const auto refusedNaming = [&](const char* field, const std::function<void(BulletRopeSettings&)>& spoil) {
+    BulletRopeSettings settings;
+    spoil(settings);
+    try {
+      RopeObject(Rod::fromSegment(limpRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)), settings);
+    } catch (const InvalidArgument& error) {
+      EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
+      return;
+    }
+    ADD_FAILURE() << field << " was accepted";
+  };
+  refusedNaming("settings.lineContactStiffness", [](BulletRopeSettings& b) { b.lineContactStiffness = 0.0; });
+  refusedNaming("settings.lineContactDamping", [](BulletRopeSettings& b) { b.lineContactDamping = -1.0; });
+  refusedNaming("settings.lineSpeculativeDamping", [&](BulletRopeSettings& b) { b.lineSpeculativeDamping = nan; });
+  refusedNaming("settings.contactQuadraturePoints", [](BulletRopeSettings& b) { b.contactQuadraturePoints = 0; });
+  refusedNaming("settings.contactQuadraturePoints", [](BulletRopeSettings& b) { b.contactQuadraturePoints = 9; });
+  refusedNaming("settings.concentratedContactRatio", [](BulletRopeSettings& b) { b.concentratedContactRatio = 0.0; });
+  refusedNaming("settings.concentratedContactRatio", [](BulletRopeSettings& b) { b.concentratedContactRatio = 1.5; });
+  refusedNaming("settings.concentratedContactRatio", [&](BulletRopeSettings& b) { b.concentratedContactRatio = nan; });
 
   EXPECT_EQ(rope.attachments().size(), 1u);
   EXPECT_EQ(physics.world().getNumCollisionObjects(), objects + 1);  // + the box added above

@@ -1,4 +1,4 @@
-// Adaptivity after each step ([A] §4, spec §3).
+// Adaptivity after each step ([A] §4; docs/method.md §10).
 #include <gtest/gtest.h>
 
 #include <algorithm>

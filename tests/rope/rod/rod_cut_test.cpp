@@ -1,4 +1,4 @@
-// Cutting ([A] §5.1, spec §1).
+// Cutting ([A] §5.1; docs/method.md §4).
 #include <gtest/gtest.h>
 
 #include <cmath>

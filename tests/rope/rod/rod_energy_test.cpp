@@ -1,4 +1,4 @@
-// Scenario: energy behaviour of the linearised backward-Euler step (spec §2).
+// Scenario: energy behaviour of the linearised backward-Euler step (docs/method.md §8).
 #include <gtest/gtest.h>
 
 #include <cmath>

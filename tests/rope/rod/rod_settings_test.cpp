@@ -25,7 +25,7 @@ TEST(RodSettings, DefaultsAreValidAndDocumented) {
   EXPECT_NEAR(settings.effectiveLinearDensity(), 1150.0 * kPi * 2.5e-5, 1e-15);
   EXPECT_NEAR(settings.axialStiffness(), 1e9 * kPi * 2.5e-5, 1e-6);
   EXPECT_NEAR(settings.effectiveBendingStiffness(), 1e9 * kPi * std::pow(0.005, 4) / 4.0, 1e-12);
-  // [B]'s thresholds as bend measures (spec §3): 140 deg -> 0.117, 160 deg -> 0.030.
+  // [B]'s thresholds as bend measures (docs/method.md eq. 28): 140 deg -> 0.117, 160 deg -> 0.030.
   EXPECT_NEAR(bendMeasureFromAngle(settings.insertAngle), 0.117, 5e-4);
   EXPECT_NEAR(bendMeasureFromAngle(settings.removeAngle), 0.030, 5e-4);
 }

@@ -166,7 +166,7 @@ TEST(Stretching, RestStateHasNoEnergyNoForceAndUniformStrainIsExact) {
   PointList force;
   stretchingForces(integrals, rest, 5.0, force);
   for (const Vec3& f : force) EXPECT_LT(f.norm(), 1e-13);
-  // Uniform stretch gamma: E = (EA/8)(gamma^2 - 1)^2 L (spec §2).
+  // Uniform stretch gamma: E = (EA/8)(gamma^2 - 1)^2 L (docs/method.md eq. 13).
   PointList stretched = rest;
   const double gamma = 1.1;
   for (Vec3& p : stretched) p *= gamma;

@@ -27,7 +27,7 @@ double quadraticShortfall(double includedAngleDegrees) {
 }
 
 // Cubic piece: the included angle at q_2 is theta; at q_1 it is 180 degrees ("other angle 180")
-// or theta as well, turning the same way (the planar worst case, spec §4).
+// or theta as well, turning the same way (the planar worst case, docs/method.md §14).
 double cubicShortfall(double includedAngleDegrees, bool bothAngles) {
   const double turn = kPi - includedAngleDegrees * kPi / 180.0;
   PointList points{Vec3(-1, 0, 0), Vec3::Zero()};

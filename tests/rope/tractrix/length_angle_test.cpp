@@ -1,4 +1,4 @@
-// Curve length vs included angle (spec §4 check table) and the threshold helper built on it.
+// Curve length vs included angle (docs/method.md §14 check table) and the threshold helper built on it.
 #include "rope/tractrix/length_angle.h"
 
 #include <gtest/gtest.h>
@@ -18,7 +18,7 @@ struct TableRow {
   double cubicBoth;
 };
 
-// spec §4, values recomputed independently ("check").
+// docs/method.md §14, values recomputed independently ("check").
 constexpr TableRow kTable[] = {
     {60.0, 0.3099, 0.2122, 0.4316},
     {100.0, 0.1518, 0.1053, 0.2193},
@@ -77,7 +77,7 @@ TEST(LengthAngle, ThresholdHelperReproducesPaperDefaults) {
   const AngleThresholds thresholds = thresholdsForLengthError(0.0279);
   EXPECT_NEAR(toDegrees(thresholds.subdivisionAngle), 140.0, 0.05);
   EXPECT_NEAR(toDegrees(thresholds.mergingAngle), 160.0, 0.3);
-  // Spec table entries invert to their angles, for each model.
+  // The check table's entries invert to their angles, for each model.
   EXPECT_NEAR(toDegrees(thresholdsForLengthError(0.1053).subdivisionAngle), 100.0, 0.05);
   EXPECT_NEAR(toDegrees(thresholdsForLengthError(0.0400, 0.25, LengthAngleModel::kQuadratic).subdivisionAngle),
               140.0, 0.05);

@@ -209,7 +209,7 @@ TEST(TractrixExperiment, CorrectedRopeKeepsItsLengthOnEveryPath) {
 
 TEST(TractrixExperiment, TighterThresholdsNeverGiveALargerPolygonCurveGap) {
   // After each step's subdivision every corner is at or above the subdivision angle, so the
-  // curve's shortfall against its polygon is bounded through the length-vs-angle relation (spec §4)
+  // curve's shortfall against its polygon is bounded through the length-vs-angle relation (method §14)
   // and shrinks as the threshold tightens. Checked on random paths for TRX_SD, with the bound of
   // the "both angles equal" cubic piece at the subdivision angle.
   const double ladder[][2] = {{120, 150}, {130, 155}, {140, 160}, {150, 165}, {160, 170}, {170, 175}};

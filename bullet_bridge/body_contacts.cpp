@@ -1,0 +1,340 @@
+#include "bullet_bridge/body_contacts.h"
+
+#include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
+#include <LinearMath/btAabbUtil2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bullet_bridge/find_contacts.h"
+#include "rope/common/error.h"
+
+namespace rope::bullet {
+
+namespace {
+
+Vec3 toVec(const btVector3& v) {
+  return Vec3(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z()));
+}
+
+btVector3 toBullet(const Vec3& v) {
+  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
+}
+
+bool isFinite(const btTransform& t) {
+  const auto finite = [](const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); };
+  return finite(t.getOrigin()) && finite(t.getBasis()[0]) && finite(t.getBasis()[1]) && finite(t.getBasis()[2]);
+}
+
+// A dynamic body that takes impulses, or nullptr for static and kinematic objects.
+btRigidBody* dynamicBody(const btCollisionObject& object) {
+  btRigidBody* body = btRigidBody::upcast(const_cast<btCollisionObject*>(&object));
+  if (body == nullptr || body->isStaticOrKinematicObject() || !(body->getInvMass() > 0)) return nullptr;
+  return body;
+}
+
+Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point) {
+  const btRigidBody* body = btRigidBody::upcast(&object);
+  if (body == nullptr) return Vec3::Zero();
+  return toVec(body->getVelocityInLocalPoint(point - body->getCenterOfMassPosition()));
+}
+
+// A world point in the frame of `frame`, computed componentwise: Bullet's SIMD inverse multiplies
+// unused vector lanes, which raised FE_INVALID under FP traps in the float build.
+btVector3 toLocal(const btTransform& frame, const Vec3& point) {
+  const btVector3 offset = toBullet(point) - frame.getOrigin();
+  const btMatrix3x3& basis = frame.getBasis();
+  btVector3 local;
+  for (int i = 0; i < 3; ++i)
+    local[i] = basis[0][i] * offset.x() + basis[1][i] * offset.y() + basis[2][i] * offset.z();
+  return local;
+}
+
+Vec3 tangential(const Vec3& v, const Vec3& normal) { return v - normal * normal.dot(v); }
+
+// Relative tolerance on mu f_n before a sticking sample is switched to sliding: round-off of the
+// end-of-step force must not flip samples that sit exactly on the friction cone.
+constexpr double kConeTolerance = 1e-6;
+// A sliding sample's friction bound is re-estimated when its end-of-step normal force differs by more.
+constexpr double kNormalForceTolerance = 0.05;
+
+}  // namespace
+
+void BodyContacts::reset() {
+  samples_.clear();
+  anchors_.clear();
+}
+
+void BodyContacts::gather(const Rod& rod, const CapsuleProxies& proxies,
+                          const std::vector<const btCollisionObject*>& candidates, const BulletRopeSettings& settings,
+                          const Exclusion& excluded, double h, std::vector<RopeContactRecord>& records,
+                          RopeStepRecord& step) {
+  samples_.clear();
+  for (const btCollisionObject* object : candidates) {
+    if (!isFinite(object->getWorldTransform())) {
+      ++step.skippedBodies;  // a NaN body must not poison the rope
+      continue;
+    }
+    if (object->getBroadphaseHandle() == nullptr) continue;
+    const std::size_t first = samples_.size();
+    try {
+      gatherBody(rod, proxies, *object, settings, excluded, h, step);
+    } catch (const InvalidArgument&) {
+      samples_.resize(first);
+      ++step.skippedBodies;  // a shape the narrowphase does not support
+    }
+  }
+
+  for (Sample& sample : samples_) {
+    const Contact& contact = sample.geometry.contact;
+    const double distance = static_cast<double>(contact.distance);
+    RopeContactRecord record;
+    record.body = sample.object;
+    record.s = sample.geometry.s;
+    record.point = contact.pointOnBody;
+    record.normal = contact.normal;
+    record.depth = -distance;
+    step.maxPenetration = std::max(step.maxPenetration, -distance);
+    sample.active = contactActive(distance, sample.normal, sample.ropeVelocity, sample.bodyVelocity, h);
+    if (sample.active) {
+      sample.spring = sampleSpring(sample.law, distance, sample.normal, sample.ropeVelocity, sample.bodyVelocity, h,
+                                   sample.friction);
+      ++step.contacts;
+    }
+    record.active = sample.active;
+    sample.record = static_cast<int>(records.size());
+    records.push_back(record);
+  }
+}
+
+void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, const btCollisionObject& object,
+                              const BulletRopeSettings& settings, const Exclusion& excluded, double h,
+                              RopeStepRecord& step) {
+  const btBroadphaseProxy* handle = object.getBroadphaseHandle();
+  const double margin = settings.speculativeMargin;
+  const double radius = rod.settings().radius;
+  // How far the body's surface can move in the step: linear speed plus spin times its box's reach.
+  double bodyReach = 0.0;
+  if (const btRigidBody* rigid = btRigidBody::upcast(&object)) {
+    const double spin = static_cast<double>(rigid->getAngularVelocity().length());
+    const double extent = 0.5 * static_cast<double>((handle->m_aabbMax - handle->m_aabbMin).length());
+    bodyReach = h * (static_cast<double>(rigid->getLinearVelocity().length()) + spin * extent);
+    if (!std::isfinite(bodyReach)) {
+      ++step.skippedBodies;
+      return;
+    }
+  }
+  btRigidBody* body = dynamicBody(object);
+  const std::size_t first = samples_.size();
+  for (int i = 0; i < proxies.size(); ++i) {
+    const Capsule capsule = proxies.capsule(i);
+    const CapsuleProxy& proxy = proxies.proxy(i);
+    // Speculative distance: the configured margin plus what rope and body can close in this step,
+    // so a fast rope meets a thin plate before it has passed it.
+    const double ropeReach = h * std::max(rod.velocity(proxy.s0).norm(), rod.velocity(proxy.s1).norm());
+    const double reach = margin + ropeReach + bodyReach;
+    const btScalar grow = static_cast<btScalar>(radius + reach);
+    btVector3 lo = capsule.a, hi = capsule.a;
+    lo.setMin(capsule.b);
+    hi.setMax(capsule.b);
+    lo -= btVector3(grow, grow, grow);
+    hi += btVector3(grow, grow, grow);
+    if (!TestAabbAgainstAabb2(lo, hi, handle->m_aabbMin, handle->m_aabbMax)) continue;
+    if (excluded(object, proxy.s0, proxy.s1)) continue;
+    chordContacts_.clear();
+    findContacts(capsule, object, reach, chordContacts_);
+    if (chordContacts_.empty()) continue;
+    const Contact* nearest = &chordContacts_.front();
+    for (const Contact& c : chordContacts_)
+      if (c.distance < nearest->distance) nearest = &c;
+    scratch_.clear();
+    sampler_.sampleCapsule(rod, i, proxy.s0, proxy.s1, capsule.radius, object, reach, *nearest,
+                           settings.contactQuadraturePoints, scratch_);
+    for (const ContactSample& geometry : scratch_) {
+      Sample sample;
+      sample.geometry = geometry;
+      sample.object = &object;
+      sample.body = body;
+      sample.normal = toVec(geometry.contact.normal);
+      sample.ropeVelocity = rod.velocity(geometry.s);
+      sample.bodyVelocity = pointVelocity(object, geometry.contact.pointOnBody);
+      // Friction state: the stored anchor (interpolated along the curve), or a new one here.
+      const Vec3 slip = tangential(sample.ropeVelocity - sample.bodyVelocity, sample.normal);
+      btVector3 anchor;
+      bool sliding = false;
+      double pressure = -1.0;
+      const bool stored = anchors_.find(object, geometry.s, proxy.s1 - proxy.s0, rod, anchor, sliding, pressure);
+      sample.pressureEstimate = pressure;
+      if (!stored) sliding = slip.norm() >= settings.frictionVelocity;
+      if (sliding && slip.norm() >= settings.frictionVelocity) {
+        sample.friction.sliding = true;
+        sample.friction.direction = slip.normalized();
+        sample.friction.speed = slip.norm();
+      } else if (stored) {
+        sample.friction.displacement = tangential(rod.position(geometry.s) - toVec(anchor), sample.normal);
+      }
+      samples_.push_back(sample);
+    }
+  }
+
+  // The laws: the line law times each sample's weight, capped in sum on a dynamic body.
+  double stiffnessScale = 1.0, dampingScale = 1.0, speculativeScale = 1.0;
+  double frictionDampingLimit = std::numeric_limits<double>::max();
+  if (body != nullptr && samples_.size() > first) {
+    double inverseMass = 0.0, weight = 0.0;
+    for (std::size_t i = first; i < samples_.size(); ++i) {
+      const Contact& c = samples_[i].geometry.contact;
+      inverseMass = std::max(inverseMass, static_cast<double>(body->computeImpulseDenominator(c.pointOnBody, c.normal)));
+      weight += samples_[i].geometry.weight;
+    }
+    if (inverseMass > 0.0) {
+      const double mass = 1.0 / inverseMass, share = settings.bodyStabilityFactor;
+      stiffnessScale = std::min(1.0, share * mass / (h * h * settings.lineContactStiffness * weight));
+      dampingScale = std::min(1.0, share * mass / (h * settings.lineContactDamping * weight + 1e-300));
+      speculativeScale = std::min(1.0, share * mass / (h * settings.lineSpeculativeDamping * weight + 1e-300));
+      frictionDampingLimit = share * mass / (h * static_cast<double>(samples_.size() - first));
+    }
+  }
+  for (std::size_t i = first; i < samples_.size(); ++i) {
+    Sample& sample = samples_[i];
+    const double w = sample.geometry.weight;
+    sample.law.stiffness = settings.lineContactStiffness * w * stiffnessScale;
+    sample.law.damping = settings.lineContactDamping * w * dampingScale;
+    sample.law.speculativeDamping = settings.lineSpeculativeDamping * w * speculativeScale;
+    sample.law.friction = settings.friction;
+    sample.law.frictionVelocity = settings.frictionVelocity;
+    sample.law.frictionDampingLimit = frictionDampingLimit;
+    // Until a solve says otherwise, sliding friction is bounded by the pressure the sample's stretch
+    // ended the last substep with, or else by the penetration force.
+    sample.friction.normalForce =
+        sample.pressureEstimate >= 0.0
+            ? sample.pressureEstimate * w
+            : std::max(0.0, -sample.law.stiffness * static_cast<double>(sample.geometry.contact.distance));
+  }
+}
+
+void BodyContacts::queue(Rod& rod) const {
+  for (const Sample& sample : samples_) {
+    if (!sample.active) continue;
+    rod.addSpringSample(sample.geometry.s, sample.spring.force, sample.spring.stiffness, sample.spring.damping);
+  }
+}
+
+bool BodyContacts::update(const Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step) {
+  bool changed = false;
+  for (Sample& sample : samples_) {
+    if (!sample.active) continue;
+    const Vec3 uNew = rod.trialVelocity(sample.geometry.s);
+    const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, uNew, h);
+    const double normalForce = force.dot(sample.normal);
+    if (normalForce < 0.0) {
+      sample.active = false;  // pulls the rope onto the body: released for the rest of the substep
+      records[static_cast<std::size_t>(sample.record)].active = false;
+      --step.contacts;
+      changed = true;
+      continue;
+    }
+    const double mu = sample.law.friction;
+    if (!(mu > 0.0)) continue;
+    SampleFriction& friction = sample.friction;
+    if (!friction.sliding) {
+      const Vec3 tangentForce = tangential(force, sample.normal);
+      const double magnitude = tangentForce.norm();
+      if (magnitude <= mu * normalForce * (1.0 + kConeTolerance)) continue;
+      // The spring would need more than mu f_n: the sample slides, along the way the force pushes it.
+      friction.sliding = true;
+      friction.direction = -tangentForce / magnitude;
+      friction.speed = std::max(tangential(uNew - sample.bodyVelocity, sample.normal).norm(), sample.law.frictionVelocity);
+      friction.normalForce = normalForce;
+      changed = true;
+    } else if (std::abs(normalForce - friction.normalForce) >
+               kNormalForceTolerance * std::max(normalForce, friction.normalForce)) {
+      friction.normalForce = normalForce;
+      changed = true;
+    } else {
+      continue;
+    }
+    sample.spring = sampleSpring(sample.law, static_cast<double>(sample.geometry.contact.distance), sample.normal,
+                                 sample.ropeVelocity, sample.bodyVelocity, h, friction);
+  }
+  return changed;
+}
+
+void BodyContacts::finish(Rod& rod, double h, double concentratedContactRatio,
+                          std::vector<RopeContactRecord>& records) {
+  for (const Sample& sample : samples_) {
+    if (!sample.active) continue;
+    const double s = sample.geometry.s;
+    const Vec3 uNew = rod.trialVelocity(s);
+    const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, uNew, h);
+    const btVector3& point = sample.geometry.contact.pointOnBody;
+    RopeContactRecord& record = records[static_cast<std::size_t>(sample.record)];
+    record.force = toBullet(force);
+    record.sticking = !sample.friction.sliding;
+    if (sample.body != nullptr) {
+      // Newton's third law: the body gets exactly the opposite of what the rope felt over the step.
+      sample.body->applyImpulse(toBullet(-force * h), point - sample.body->getCenterOfMassPosition());
+      sample.body->activate();
+    }
+    if (!(sample.law.friction > 0.0)) continue;
+    // The anchor for the next substep, where the body will be after its next integration.
+    const Vec3 xNew = rod.position(s) + h * uNew;
+    const Vec3 bodyMotion = h * sample.bodyVelocity;
+    // Sliding: an anchor that puts the spring at the friction force the sample ends the step with
+    // (x - a = -f_t / k), so a sample that sticks again keeps carrying its load instead of dropping
+    // it on its neighbours (which then slide in turn: a rope round a post crept at mm/s).
+    Vec3 anchorNew = xNew + tangential(force, sample.normal) / sample.law.stiffness;
+    bool slides = false;
+    if (!sample.friction.sliding) {
+      // The anchor moved with the body; keep the spring within the friction cone.
+      anchorNew = rod.position(s) - sample.friction.displacement + bodyMotion;
+      const Vec3 stretch = tangential(xNew - anchorNew, sample.normal);
+      const double limit = sample.law.friction * std::max(0.0, force.dot(sample.normal));
+      const double springForce = sample.law.stiffness * stretch.norm();
+      if (springForce > limit && springForce > 0.0) anchorNew = xNew - stretch * (limit / springForce);
+    } else {
+      const Vec3 slip = tangential(uNew - sample.bodyVelocity, sample.normal);
+      slides = slip.norm() >= sample.law.frictionVelocity && slip.dot(sample.friction.direction) > 0.0;
+    }
+    FrictionAnchor anchor;
+    anchor.body = sample.object;
+    anchor.s = s;
+    anchor.localPoint = toLocal(sample.object->getWorldTransform(), anchorNew - bodyMotion);
+    anchor.sliding = slides;
+    anchor.pressure = std::max(0.0, force.dot(sample.normal)) / sample.geometry.weight;
+    anchors_.add(anchor);
+  }
+  anchors_.commit();
+  markConcentratedLoads(rod, concentratedContactRatio);
+}
+
+void BodyContacts::markConcentratedLoads(Rod& rod, double ratio) const {
+  const KnotVector& knots = rod.knots();
+  std::size_t i = 0;
+  while (i < samples_.size()) {
+    if (!samples_[i].active) {
+      ++i;
+      continue;
+    }
+    // One touching stretch: active samples on one body over consecutive capsules.
+    std::size_t j = i + 1;
+    while (j < samples_.size() && samples_[j].active && samples_[j].object == samples_[i].object &&
+           samples_[j].geometry.capsule - samples_[j - 1].geometry.capsule <= 1)
+      ++j;
+    double length = 0.0, moment = 0.0;
+    for (std::size_t k = i; k < j; ++k) {
+      length += samples_[k].geometry.weight;
+      moment += samples_[k].geometry.weight * samples_[k].geometry.s;
+    }
+    if (length > 0.0) {
+      const double centre = moment / length;
+      const int span = knots.findSpan(centre);
+      const double spanLength = (knots[span + 1] - knots[span]) * rod.restMetric(centre);
+      if (length < ratio * spanLength) rod.markInteraction(centre);
+    }
+    i = j;
+  }
+}
+
+}  // namespace rope::bullet

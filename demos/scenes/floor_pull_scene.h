@@ -1,0 +1,60 @@
+#pragma once
+// "floorpull": flat Coulomb friction. A straight rope lies along x on a large static box (top face
+// y = 0) and is pulled along the floor by a distributed force F (N per rope) from t = 0, with friction
+// mu (BulletRopeSettings::friction). Coulomb's law for the rope as a whole: it slides with
+//   v(t) = (F - mu m g) / m * t   when F > mu m g,   and stays put (v = 0) when F <= mu m g.
+//
+// How the force is applied: a RopeWorld clears the rod's queued loads at every substep, so today the
+// only distributed force a user can put on a rope in a Bullet world is its own gravity
+// (RodSettings::gravity). The pull is therefore the horizontal component of the rope's gravity,
+// pullAcceleration = F / m along +x, on top of the vertical 9.81 m/s^2; the floor's normal load is
+// still m g. Everything else is the library's defaults (RodSettings{}, BulletRopeSettings{}).
+
+#include <memory>
+
+#include "bullet_bridge/rope_object.h"
+#include "demos/scenes/demo_scene.h"
+#include "demos/scenes/physics_world.h"
+
+namespace rope::demos {
+
+struct FloorPullSceneSettings {
+  double friction = 0.5;          // mu, >= 0
+  double pullAcceleration = 6.0;  // F / m, m/s^2, finite (along +x)
+  double gravity = 9.81;          // g, m/s^2, > 0 (downwards, the world's and the rope's)
+  double ropeLength = 1.0;        // m, > 0
+  double timeStep = 1.0 / 240.0;  // s, > 0
+  RodSettings rod;                // defaults; restLength and gravity are set by the scene
+  bullet::BulletRopeSettings bridge;  // defaults; friction is overwritten by `friction` above
+
+  // (F - mu m g) / m clamped at 0: the acceleration Coulomb's law predicts, m/s^2.
+  double coulombAcceleration() const;
+};
+
+class FloorPullScene : public DemoScene {
+ public:
+  // Throws InvalidArgument naming the field for bad settings.
+  explicit FloorPullScene(const FloorPullSceneSettings& settings);
+
+  double timeStep() const override { return settings_.timeStep; }
+  StepMeasurements step() override;
+  StepMeasurements measure() const override;
+  void draw(render::Scene& scene) const override;
+  std::optional<render::Camera> camera() const override;
+
+  const bullet::RopeObject& rope() const { return *rope_; }
+  PhysicsWorld& physics() { return physics_; }
+  double time() const { return time_; }
+  // Velocity of the rope's centre of mass along x (momentum / mass), m/s.
+  double speed() const;
+  // Position of the rope's centre of mass along x (mass-weighted mean of the curve), m.
+  double centreOfMassX() const;
+
+ private:
+  FloorPullSceneSettings settings_;
+  PhysicsWorld physics_;
+  std::unique_ptr<bullet::RopeObject> rope_;
+  double time_ = 0.0;
+};
+
+}  // namespace rope::demos

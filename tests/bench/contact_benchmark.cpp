@@ -1,0 +1,79 @@
+// Cost of rope contact (issue 13), per 1/240 s stepSimulation, with the library's DEFAULT RodSettings
+// and BulletRopeSettings and no cap on resolution (maxControlPoints is the default's):
+//   * N = 1, 10, 100 straight ropes (1 m, 16 initial control points, 5 mm radius) resting side by side
+//     on a static box (demos/scenes/resting_rope_scene.h), and the same N Bullet soft-body ropes
+//     (btSoftBodyHelpers::CreateRope, 16 segments, 4 iterations: demos/scenes/softbody_ropes_scene.h)
+//     on the same box, in the same program, timed after 0.5 s of settling;
+//   * the knot scene (demos/scenes/knot_scene.h) once the knot is pulled tight (after 3 s), and the
+//     2 m pile (demos/scenes/pile_scene.h) once it has landed (after 1 s).
+// One iteration is one step; run with --benchmark_repetitions=5 and read the median aggregates.
+// Counters: control points per rope and active contacts per step (SplineRope side).
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+
+#include "demos/scenes/knot_scene.h"
+#include "demos/scenes/pile_scene.h"
+#include "demos/scenes/resting_rope_scene.h"
+#include "demos/scenes/softbody_ropes_scene.h"
+
+namespace {
+
+using rope::demos::RestingRopeScene;
+using rope::demos::RestingRopeSceneSettings;
+using rope::demos::SoftBodyRopesScene;
+using rope::demos::SoftBodyRopesSceneSettings;
+
+constexpr double kSettleTime = 0.5;  // s of simulation before timing
+
+int stepsFor(double seconds, double h) { return static_cast<int>(std::lround(seconds / h)); }
+
+void BM_SplineRopesOnBox(benchmark::State& state) {
+  RestingRopeSceneSettings settings;  // default rod and bridge settings, surface kBox
+  settings.ropeCount = static_cast<int>(state.range(0));
+  RestingRopeScene scene(settings);
+  for (int i = 0; i < stepsFor(kSettleTime, scene.timeStep()); ++i) scene.step();
+  long contacts = 0;
+  for (auto _ : state) {
+    scene.step();
+    for (int r = 0; r < scene.ropeCount(); ++r) contacts += scene.rope(r).lastStep().contacts;
+  }
+  int controlPoints = 0;
+  for (int r = 0; r < scene.ropeCount(); ++r) controlPoints += scene.rope(r).rod().controlPointCount();
+  state.counters["ropes"] = scene.ropeCount();
+  state.counters["control_points_per_rope"] = static_cast<double>(controlPoints) / scene.ropeCount();
+  state.counters["contacts_per_step"] = static_cast<double>(contacts) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_SplineRopesOnBox)->ArgName("ropes")->Arg(1)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond);
+
+void BM_SoftBodyRopesOnBox(benchmark::State& state) {
+  SoftBodyRopesSceneSettings settings;  // CreateRope, 16 segments, 4 iterations
+  settings.ropeCount = static_cast<int>(state.range(0));
+  SoftBodyRopesScene scene(settings);
+  for (int i = 0; i < stepsFor(kSettleTime, scene.timeStep()); ++i) scene.step();
+  for (auto _ : state) scene.step();
+  state.counters["ropes"] = scene.ropeCount();
+}
+BENCHMARK(BM_SoftBodyRopesOnBox)->ArgName("ropes")->Arg(1)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond);
+
+// The knot held tight by its grippers, per step (issue 13's target: 10x real time, <= 0.42 ms).
+void BM_KnotSceneStep(benchmark::State& state) {
+  rope::demos::KnotScene scene(rope::demos::KnotSceneSettings{});
+  for (int i = 0; i < stepsFor(3.0, scene.timeStep()); ++i) scene.step();
+  for (auto _ : state) scene.step();
+  state.counters["control_points"] = scene.rope().rod().controlPointCount();
+}
+BENCHMARK(BM_KnotSceneStep)->Unit(benchmark::kMillisecond);
+
+// The 2 m pile once it has landed, per step (issue 13's target: 3x real time, <= 1.39 ms).
+void BM_PileSceneStep(benchmark::State& state) {
+  rope::demos::PileScene scene(rope::demos::PileSceneSettings{});
+  for (int i = 0; i < stepsFor(1.0, scene.timeStep()); ++i) scene.step();
+  for (auto _ : state) scene.step();
+  state.counters["control_points"] = scene.rope().rod().controlPointCount();
+}
+BENCHMARK(BM_PileSceneStep)->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -1,0 +1,103 @@
+#include "demos/scenes/resting_rope_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "rope/common/error.h"
+
+namespace rope::demos {
+namespace {
+
+using Surface = RestingRopeSceneSettings::Surface;
+
+std::string surfaceName(const ::testing::TestParamInfo<Surface>& info) {
+  switch (info.param) {
+    case Surface::kPlane: return "Plane";
+    case Surface::kBox: return "Box";
+    case Surface::kTriangleMesh: return "TriangleMesh";
+  }
+  return "Unknown";
+}
+
+class RestingRope : public ::testing::TestWithParam<Surface> {};
+
+// A straight rope (default settings, 16 control points) laid on a flat surface stays coarse: it never
+// has more control points than it started with, and once settled (after 0.5 s) no knot is inserted
+// while it lies there for another second. It does lie there: still, one radius above the surface.
+TEST_P(RestingRope, KeepsItsControlPointsAndInsertsNoKnotAtRest) {
+  RestingRopeSceneSettings settings;
+  settings.surface = GetParam();
+  RestingRopeScene scene(settings);
+  const int initial = scene.rope(0).rod().controlPointCount();
+  ASSERT_EQ(initial, RodSettings{}.initialControlPoints);
+  const int settle = static_cast<int>(std::lround(0.5 / scene.timeStep()));
+  int most = initial, insertionsAtRest = 0, insertionsSettling = 0;
+  for (int i = 0; i < 3 * settle; ++i) {
+    const StepMeasurements m = scene.step();
+    most = std::max(most, scene.maxControlPoints());
+    (i < settle ? insertionsSettling : insertionsAtRest) += m.insertions;
+  }
+  const double radius = scene.rope(0).rod().settings().radius;
+  RecordProperty("max_control_points", most);
+  RecordProperty("final_control_points", scene.maxControlPoints());
+  RecordProperty("insertions_settling", insertionsSettling);
+  RecordProperty("insertions_at_rest", insertionsAtRest);
+  RecordProperty("contacts", scene.rope(0).lastStep().contacts);
+  EXPECT_LE(most, initial) << "refined to " << most << " control points (" << scene.maxControlPoints() << " at 1.5 s, "
+                           << scene.rope(0).lastStep().contacts << " contacts)";
+  EXPECT_EQ(insertionsAtRest, 0) << insertionsSettling << " insertions while settling";
+  // The scenario itself: the rope lies still on the surface.
+  EXPECT_LT(scene.maxSpeed(), 1.0e-2);
+  EXPECT_NEAR(scene.lowestPoint(), radius, 1.0e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(Surfaces, RestingRope, ::testing::Values(Surface::kPlane, Surface::kBox, Surface::kTriangleMesh),
+                         surfaceName);
+
+TEST(RestingRopeScene, LaysTheRopesSideBySideOnTheSurface) {
+  RestingRopeSceneSettings settings;
+  settings.ropeCount = 3;
+  settings.surface = Surface::kTriangleMesh;
+  RestingRopeScene scene(settings);
+  ASSERT_EQ(scene.ropeCount(), 3);
+  const double radius = RodSettings{}.radius;
+  for (int i = 0; i < 3; ++i) {
+    const Rod& rod = scene.rope(i).rod();
+    EXPECT_NEAR(rod.length(), 1.0, 1e-9);
+    EXPECT_NEAR(rod.position(rod.beginParameter()).y(), radius, 1e-12);
+    if (i > 0) {
+      EXPECT_NEAR(rod.position(0.0).z() - scene.rope(i - 1).rod().position(0.0).z(), settings.spacing, 1e-12);
+    }
+  }
+  EXPECT_NEAR(scene.lowestPoint(), radius, 1e-12);
+  EXPECT_EQ(scene.maxSpeed(), 0.0);
+}
+
+TEST(RestingRopeScene, RejectsBadSettingsNamingTheField) {
+  auto expectRejected = [](RestingRopeSceneSettings settings, const std::string& field) {
+    try {
+      RestingRopeScene scene(settings);
+      ADD_FAILURE() << field << " was accepted";
+    } catch (const InvalidArgument& error) {
+      EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
+    }
+  };
+  RestingRopeSceneSettings settings;
+  settings.ropeCount = 0;
+  expectRejected(settings, "settings.ropeCount");
+  settings = {};
+  settings.spacing = 0.005;
+  expectRejected(settings, "settings.spacing");
+  settings = {};
+  settings.gap = -0.001;
+  expectRejected(settings, "settings.gap");
+  settings = {};
+  settings.ropeLength = std::nan("");
+  expectRejected(settings, "settings.ropeLength");
+}
+
+}  // namespace
+}  // namespace rope::demos

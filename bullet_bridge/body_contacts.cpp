@@ -45,7 +45,7 @@ Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point) {
 btVector3 toLocal(const btTransform& frame, const Vec3& point) {
   const btVector3 offset = toBullet(point) - frame.getOrigin();
   const btMatrix3x3& basis = frame.getBasis();
-  btVector3 local;
+  btVector3 local(0, 0, 0);  // all four lanes set: the float build warns of the unused fourth (-Werror)
   for (int i = 0; i < 3; ++i)
     local[i] = basis[0][i] * offset.x() + basis[1][i] * offset.y() + basis[2][i] * offset.z();
   return local;

@@ -38,6 +38,7 @@ set(SPLINEROPE_ROPE_SUPPORT_HEADERS
   rope/rod/banded_matrix.h     # Rod holds its step matrix
   rope/rod/pin_constraints.h   # Rod holds its constrained solver; Pin (Rod::pins()) is API
   rope/rod/rod_integrals.h     # Rod holds its integrals (Rod::integrals() is for diagnostics)
+  rope/tractrix/length_correction.h  # TractrixRope holds its correction workspace
 )
 set(SPLINEROPE_ROPE_INTERNAL_HEADERS
   rope/spline/gauss_legendre.h

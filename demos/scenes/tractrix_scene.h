@@ -2,7 +2,8 @@
 // "tractrix": [B]'s follow-the-leader kinematics. Two ropes of the same length follow the same
 // figure-eight path with their leading ends, side by side: TRX (an exact polyline of 20 rigid
 // segments) and TRX_SD_MRG (a cubic spline control polygon that subdivides where it bends and
-// merges where it straightens). Both keep their length approximately; the stats record how well.
+// merges where it straightens, with the default length correction that keeps the curve's length).
+// The stats record both ropes' length errors.
 
 #include "demos/scenes/demo_scene.h"
 #include "rope/tractrix/tractrix_rope.h"

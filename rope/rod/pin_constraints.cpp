@@ -3,14 +3,82 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
+#include "rope/spline/bspline_basis.h"
+
 namespace rope {
+
+ConstraintRows pinRows(const KnotVector& knots, const PointList& points, const PointList& velocities, double s,
+                       const Vec3& target, double h) {
+  const int d = knots.degree();
+  const int k = knots.findSpan(s);
+  BasisValues basis;
+  evaluateBasis(knots, k, s, 0, basis);
+  ConstraintRows row;
+  row.first = k - d;
+  row.count = d + 1;
+  Vec3 position = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();
+  for (int a = 0; a <= d; ++a) {
+    row.basis[a] = basis.d[0][static_cast<size_t>(a)];
+    position += row.basis[a] * points[static_cast<size_t>(row.first + a)];
+    velocity += row.basis[a] * velocities[static_cast<size_t>(row.first + a)];
+  }
+  row.rhs = (target - position) / h - velocity;
+  return row;
+}
+
+void orthonormalComplement(const Vec3& direction, Vec3& e1, Vec3& e2) {
+  // Cross with the axis least aligned with the direction: never close to parallel.
+  int axis = 0;
+  for (int c = 1; c < 3; ++c)
+    if (std::fabs(direction[c]) < std::fabs(direction[axis])) axis = c;
+  e1 = direction.cross(Vec3::Unit(axis)).normalized();
+  e2 = direction.cross(e1);
+}
+
+ConstraintRows clampTangentRows(const KnotVector& knots, const PointList& points, const PointList& velocities,
+                                double s, const Vec3& direction, double h) {
+  const int d = knots.degree();
+  const int k = knots.findSpan(s);
+  BasisValues basis;
+  evaluateBasis(knots, k, s, 1, basis);
+  // Scale by the span's parameter length: b' * span is O(1) like b, whatever the parametrisation.
+  const double scale = knots[k + 1] - knots[k];
+  ConstraintRows row;
+  row.first = k - d;
+  row.count = d + 1;
+  row.rowCount = 2;
+  orthonormalComplement(direction, row.directions[0], row.directions[1]);
+  row.directions[2] = Vec3::Zero();
+  Vec3 derivative = Vec3::Zero();          // C'(s) * scale
+  Vec3 derivativeVelocity = Vec3::Zero();  // Cdot'(s) * scale
+  for (int a = 0; a <= d; ++a) {
+    row.basis[a] = scale * basis.d[1][static_cast<size_t>(a)];
+    derivative += row.basis[a] * points[static_cast<size_t>(row.first + a)];
+    derivativeVelocity += row.basis[a] * velocities[static_cast<size_t>(row.first + a)];
+  }
+  for (int r = 0; r < 2; ++r) {
+    row.rhs[r] = -row.directions[r].dot(derivative) / h - row.directions[r].dot(derivativeVelocity);
+  }
+  return row;
+}
 
 bool ConstrainedSolver::solve(const SymmetricBandedMatrix& factor, const std::vector<ConstraintRows>& rows,
                               double* x) {
   ready_ = false;
   const int size = factor.size();
   factor.forwardSubstitute(x, 0);  // y = L^-1 r
-  const int columns = 3 * static_cast<int>(rows.size());
+  owner_.clear();
+  ownerRow_.clear();
+  for (int p = 0; p < static_cast<int>(rows.size()); ++p) {
+    for (int r = 0; r < rows[static_cast<size_t>(p)].rowCount; ++r) {
+      owner_.push_back(p);
+      ownerRow_.push_back(r);
+    }
+  }
+  const int columns = static_cast<int>(owner_.size());
   columns_ = columns;
   if (columns == 0) {
     factor.backSubstitute(x);
@@ -24,17 +92,20 @@ bool ConstrainedSolver::solve(const SymmetricBandedMatrix& factor, const std::ve
     schur_.resize(columns, columns);
     lambda_.resize(columns);
   }
-  for (int p = 0; p < static_cast<int>(rows.size()); ++p) {
-    const ConstraintRows& row = rows[static_cast<size_t>(p)];
-    for (int axis = 0; axis < 3; ++axis) {
-      const int c = 3 * p + axis;
-      double* z = &z_[static_cast<size_t>(c) * static_cast<size_t>(size)];
-      const int begin = 3 * row.first + axis;
-      start_[static_cast<size_t>(c)] = begin;
-      std::fill(z + begin, z + size, 0.0);
-      for (int a = 0; a < row.count; ++a) z[begin + 3 * a] = row.basis[a];
-      factor.forwardSubstitute(z, begin);
-    }
+  for (int c = 0; c < columns; ++c) {
+    const ConstraintRows& row = rows[static_cast<size_t>(owner_[static_cast<size_t>(c)])];
+    const Vec3& direction = row.directions[ownerRow_[static_cast<size_t>(c)]];
+    double* z = &z_[static_cast<size_t>(c) * static_cast<size_t>(size)];
+    // The column starts at the first non-zero component of the direction at the first control point
+    // (for a pin row along axis k: 3 first + k).
+    int offset = 0;
+    while (offset < 2 && direction[offset] == 0.0) ++offset;
+    const int begin = 3 * row.first + offset;
+    start_[static_cast<size_t>(c)] = begin;
+    std::fill(z + begin, z + size, 0.0);
+    for (int a = 0; a < row.count; ++a)
+      for (int axis = offset; axis < 3; ++axis) z[3 * (row.first + a) + axis] = row.basis[a] * direction[axis];
+    factor.forwardSubstitute(z, begin);
   }
   for (int r = 0; r < columns; ++r) {
     const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
@@ -48,7 +119,8 @@ bool ConstrainedSolver::solve(const SymmetricBandedMatrix& factor, const std::ve
     }
     double projected = 0.0;
     for (int i = start_[static_cast<size_t>(r)]; i < size; ++i) projected += zr[i] * x[i];
-    lambda_(r) = projected - rows[static_cast<size_t>(r / 3)].rhs[r % 3];
+    const ConstraintRows& row = rows[static_cast<size_t>(owner_[static_cast<size_t>(r)])];
+    lambda_(r) = projected - row.rhs[ownerRow_[static_cast<size_t>(r)]];
   }
   llt_.compute(schur_);
   if (llt_.info() != Eigen::Success) return false;

@@ -5,12 +5,27 @@
 //   sum_i b_i(s*) dv_i = (target - C(s*)) / h - Cdot(s*),
 // i.e. the end-of-step position is exactly the target (moving targets included): the position error
 // is folded into the velocity-level constraint, so pins never drift.
+//
+// A clamp (a weld; docs/method.md §9) is a pin that also holds the curve's tangent at s*
+// along a unit direction d. The tangent condition is imposed as P C'(s*) = 0 with P = I - d d^T,
+// i.e. two rows e_k . C'(s*) = 0 for an orthonormal pair e_1, e_2 orthogonal to d. Like the pin it is
+// linear in q, so on the end-of-step positions it reads
+//   sum_i b_i'(s*) e_k . dv_i = -(e_k . C'(s*)) / h - e_k . Cdot'(s*),
+// and holds exactly at the end of every step: nothing is linearised, nothing drifts, and a direction
+// that moves (a turning nozzle) is reached at the end of the step like a moving pin's target. The
+// alternative C'/|C'| = d is nonlinear (its linearisation would drift) and would also fix the
+// stretch |C'| at s*, which belongs to the material law; P C' = 0 leaves the component along d free.
+// It does not exclude C' antiparallel to d, which needs the rope to fold back on itself at s* within
+// one step; Rod checks the sign after the solve and reports such a step as failed. Rows are scaled by
+// the knot span's parameter length so that b' is O(1) like b (the scale changes nothing but the
+// conditioning of the Schur complement).
+//
 // The rows are imposed with Lagrange multipliers through the Schur complement against the banded
 // factor S = L L^T (never by deleting DOFs, so any s* works):
 //   Z = L^-1 G^T,  (Z^T Z) lambda = Z^T L^-1 r - c,  dv = L^-T (L^-1 r - Z lambda).
-// A row's column of G^T is zero before the pin's first control point, so its forward substitution
-// starts there: a pin at the far end costs O(1), one at the near end O(n). The 3m x 3m Schur matrix is
-// the only dense matrix (m pins, m small).
+// A row's column of G^T is zero before the constraint's first control point, so its forward
+// substitution starts there: a pin at the far end costs O(1), one at the near end O(n). The
+// Schur matrix (3 rows per pin, 5 per clamp) is the only dense matrix (few constraints).
 // Not API (except Pin, which Rod::pins() returns): installed only because rope/rod/rod.h holds a solver.
 
 #include <vector>
@@ -28,15 +43,37 @@ struct Pin {
   int id = 0;
   double parameter = 0.0;  // s*
   Vec3 target = Vec3::Zero();  // m, where C(s*) is at the end of the next step
+  // Clamps only: the unit vector the tangent C'(s*)/|C'(s*)| points along at the end of the next
+  // step. Zero for a plain pin.
+  Vec3 direction = Vec3::Zero();
+  bool isClamp() const { return direction.squaredNorm() > 0.0; }
 };
 
-// One pin's three rows: basis values b_{first .. first+count-1}(s*) and the right-hand side c (m/s).
+// Up to three rows on dv that share one set of basis values: row r reads
+//   sum_a basis[a] * (directions[r] . dv_{first+a}) = rhs[r].
+// A pin is three rows along the axes with the basis values b(s*); a clamp's tangent condition is two
+// rows along e_1, e_2 with the scaled derivatives b'(s*).
 struct ConstraintRows {
   int first = 0;
   int count = 0;
   double basis[kMaxDegree + 1] = {};
   Vec3 rhs = Vec3::Zero();
+  int rowCount = 3;  // 1..3
+  Vec3 directions[3] = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
 };
+
+// A pin's three rows at the state (points, velocities) for a step of h seconds (see above).
+ConstraintRows pinRows(const KnotVector& knots, const PointList& points, const PointList& velocities, double s,
+                       const Vec3& target, double h);
+
+// A clamp's two tangent rows for the unit direction. The caller guarantees s in the valid range,
+// |direction| = 1 and h > 0 (the rod's own state).
+ConstraintRows clampTangentRows(const KnotVector& knots, const PointList& points, const PointList& velocities,
+                                double s, const Vec3& direction, double h);
+
+// Unit vectors e_1, e_2 with (e_1, e_2, direction) orthonormal and right-handed, chosen
+// deterministically from the direction alone.
+void orthonormalComplement(const Vec3& direction, Vec3& e1, Vec3& e2);
 
 class ConstrainedSolver {
  public:
@@ -63,7 +100,9 @@ class ConstrainedSolver {
  private:
   int columns_ = 0;
   bool ready_ = false;
-  std::vector<double> z_;        // 3m columns of length N
+  std::vector<int> owner_;       // constraint (index into rows) of each column
+  std::vector<int> ownerRow_;    // its row (0..rowCount-1)
+  std::vector<double> z_;        // one column of length N per row
   std::vector<int> start_;       // first non-zero row of each column
   Eigen::MatrixXd schur_;
   Eigen::VectorXd lambda_;

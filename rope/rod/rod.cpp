@@ -239,29 +239,52 @@ void Rod::setVelocities(const PointList& velocities) {
 
 // ---- pins ----
 
-int Rod::findPin(int id) const {
-  for (size_t i = 0; i < pins_.size(); ++i)
-    if (pins_[i].id == id) return static_cast<int>(i);
-  throw InvalidArgument("id", std::to_string(id), "no such pin");
+int Rod::findPin(int id, bool clamp) const {
+  for (size_t i = 0; i < pins_.size(); ++i) {
+    if (pins_[i].id != id) continue;
+    if (pins_[i].isClamp() != clamp) {
+      throw InvalidArgument("id", std::to_string(id),
+                            clamp ? "is a pin: use setPinTarget / releasePin"
+                                  : "is a clamp: use setClampTarget / releaseClamp");
+    }
+    return static_cast<int>(i);
+  }
+  throw InvalidArgument("id", std::to_string(id), clamp ? "no such clamp" : "no such pin");
+}
+
+int Rod::constraintRowCount() const {
+  int rows = 0;
+  for (const Pin& p : pins_) rows += p.isClamp() ? 5 : 3;
+  return rows;
+}
+
+int Rod::addPin(double s, const Vec3& target, const Vec3& direction) {
+  for (const Pin& other : pins_) {
+    if (other.parameter == s) {
+      throw InvalidArgument("s", formatValue(s),
+                            other.isClamp() ? "a clamp is already there" : "a pin is already there");
+    }
+  }
+  Pin added;
+  added.id = nextPinId_;
+  added.parameter = s;
+  added.target = target;
+  added.direction = direction;
+  const int rows = constraintRowCount() + (added.isClamp() ? 5 : 3);
+  if (rows > 3 * controlPointCount()) {
+    throw InvalidArgument(added.isClamp() ? "clamps" : "pins", std::to_string(rows) + " constraint rows",
+                          "more than the rod's 3 x " + std::to_string(controlPointCount()) + " degrees of freedom");
+  }
+  ++nextPinId_;
+  pins_.push_back(added);
+  trialValid_ = false;
+  return added.id;
 }
 
 int Rod::pin(double s, const Vec3& target) {
   validateParameter(s);
   requireFiniteVector("target", target);
-  for (const Pin& other : pins_) {
-    if (other.parameter == s) throw InvalidArgument("s", formatValue(s), "a pin is already there");
-  }
-  if (static_cast<int>(pins_.size()) + 1 > controlPointCount()) {
-    throw InvalidArgument("pins", std::to_string(pins_.size() + 1),
-                          "more pins than control points (" + std::to_string(controlPointCount()) + ")");
-  }
-  Pin added;
-  added.id = nextPinId_++;
-  added.parameter = s;
-  added.target = target;
-  pins_.push_back(added);
-  trialValid_ = false;
-  return added.id;
+  return addPin(s, target, Vec3::Zero());
 }
 
 int Rod::pin(double s) {
@@ -270,16 +293,79 @@ int Rod::pin(double s) {
 }
 
 void Rod::setPinTarget(int id, const Vec3& target) {
-  const int index = findPin(id);
+  const int index = findPin(id, false);
   requireFiniteVector("target", target);
   pins_[static_cast<size_t>(index)].target = target;
   trialValid_ = false;
 }
 
 void Rod::releasePin(int id) {
-  const int index = findPin(id);
-  pins_.erase(pins_.begin() + index);
+  pins_.erase(pins_.begin() + findPin(id, false));
   trialValid_ = false;
+}
+
+// ---- clamps ----
+
+namespace {
+
+// The unit vector along direction; "direction[c]" for a non-finite component, "direction" for zero.
+// Scaled by its largest component first, so that tiny and huge (finite) vectors normalise exactly.
+Vec3 unitDirection(const Vec3& direction) {
+  requireFiniteVector("direction", direction);
+  const double largest = direction.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0)) throw InvalidArgument("direction", "(0, 0, 0)", "must have a non-zero length");
+  const Vec3 scaled = direction / largest;
+  return scaled / scaled.norm();
+}
+
+}  // namespace
+
+int Rod::clamp(double s, const Vec3& target, const Vec3& direction) {
+  validateParameter(s);
+  requireFiniteVector("target", target);
+  return addPin(s, target, unitDirection(direction));
+}
+
+int Rod::clamp(double s) {
+  validateParameter(s);
+  const Vec3 derivative = evaluateCurve(knots_, points_, s).firstDerivative;
+  if (!(derivative.cwiseAbs().maxCoeff() > 0.0)) {
+    throw InvalidArgument("s", formatValue(s), "the curve has no tangent there (C'(s) = 0)");
+  }
+  return clamp(s, position(s), derivative);
+}
+
+void Rod::setClampTarget(int id, const Vec3& target, const Vec3& direction) {
+  const int index = findPin(id, true);
+  requireFiniteVector("target", target);
+  const Vec3 unit = unitDirection(direction);
+  pins_[static_cast<size_t>(index)].target = target;
+  pins_[static_cast<size_t>(index)].direction = unit;
+  trialValid_ = false;
+}
+
+void Rod::releaseClamp(int id) {
+  pins_.erase(pins_.begin() + findPin(id, true));
+  trialValid_ = false;
+}
+
+void Rod::addClampNeighbours(std::vector<double>& interactions) const {
+  // Knot removal moves the curve only on the open support of the replaced control points, which
+  // adaptivity keeps clear of every pin and clamp parameter; inside the valid range the change
+  // vanishes at the support's ends with d-1 derivatives (simple knots), so C'(s) is kept too. At a
+  // clamped end it is not: removing the first interior knot replaces q_1 and turns C'(begin) (for
+  // the last interior knot, C'(end)). Marking the nearest distinct knot on either side of a clamp as
+  // an interaction keeps it (adaptivity removes no knot near an interaction).
+  for (const Pin& p : pins_) {
+    if (!p.isClamp()) continue;
+    const int k = knots_.findSpan(p.parameter);  // knots_[k] <= s < knots_[k+1] (or s = end)
+    int below = k;
+    while (below > degree() && !(knots_[below] < p.parameter)) --below;
+    if (knots_[below] < p.parameter && knots_[below] > beginParameter()) interactions.push_back(knots_[below]);
+    int above = k + 1;
+    while (above < controlPointCount() && !(knots_[above] > p.parameter)) ++above;
+    if (knots_[above] > p.parameter && knots_[above] < endParameter()) interactions.push_back(knots_[above]);
+  }
 }
 
 // ---- loads ----
@@ -412,6 +498,7 @@ StepReport Rod::commitTrial() {
   points_.swap(newPoints_);
   velocities_.swap(newVelocities_);
   for (const Pin& p : pins_) interactions_.push_back(p.parameter);
+  addClampNeighbours(interactions_);
   clearLoads();
   adapt(report);
   report.controlPoints = controlPointCount();
@@ -500,26 +587,17 @@ bool Rod::assembleAndSolve(double h, StepReport& report) {
     return false;
   }
 
-  rows_.resize(pins_.size());
-  for (size_t p = 0; p < pins_.size(); ++p) {
-    const Pin& pinned = pins_[p];
-    const int k = knots_.findSpan(pinned.parameter);
-    evaluateBasis(knots_, k, pinned.parameter, 0, basis);
-    ConstraintRows& row = rows_[p];
-    row.first = k - d;
-    row.count = local;
-    Vec3 position = Vec3::Zero();
-    Vec3 velocity = Vec3::Zero();
-    for (int a = 0; a < local; ++a) {
-      row.basis[a] = basis.d[0][static_cast<size_t>(a)];
-      position += row.basis[a] * points_[static_cast<size_t>(row.first + a)];
-      velocity += row.basis[a] * velocities_[static_cast<size_t>(row.first + a)];
+  // Pins and clamps: three position rows each, two tangent rows more per clamp (pin_constraints.h).
+  rows_.clear();
+  for (const Pin& pinned : pins_) {
+    rows_.push_back(pinRows(knots_, points_, velocities_, pinned.parameter, pinned.target, h));
+    if (pinned.isClamp()) {
+      rows_.push_back(clampTangentRows(knots_, points_, velocities_, pinned.parameter, pinned.direction, h));
     }
-    row.rhs = (pinned.target - position) / h - velocity;
   }
   if (!solver_.solve(system_, rows_, rhs_.data())) {
     report.ok = false;
-    report.failure = "pin constraints are dependent or not finite";
+    report.failure = "pin or clamp constraints are dependent or not finite";
     return false;
   }
 
@@ -535,6 +613,17 @@ bool Rod::assembleAndSolve(double h, StepReport& report) {
     report.ok = false;
     report.failure = "the step produced a non-finite state";
     return false;
+  }
+  // P C'(s) = 0 also admits a tangent pointing against the clamp's direction (the rope folded back
+  // on itself at s within the step): a failed step, not a silently reversed weld.
+  for (const Pin& pinned : pins_) {
+    if (!pinned.isClamp()) continue;
+    const Vec3 tangent = evaluateCurve(knots_, newPoints_, pinned.parameter).firstDerivative;
+    if (!(tangent.dot(pinned.direction) > 0.0)) {
+      report.ok = false;
+      report.failure = "a clamp's tangent reversed within the step";
+      return false;
+    }
   }
   return true;
 }

@@ -2,15 +2,16 @@
 // The dynamic adaptive rod ([A] §3–5; docs/method.md §5–§10): a B-spline curve whose control points are the
 // degrees of freedom, with mass and gravity from a continuous linear density, Green–Lagrange
 // stretching ([A] eq. 11), a continuous bending energy (bending_energy.h), a linearised backward-Euler
-// step solved by a block-banded Cholesky in O(n), pins by Lagrange multipliers, knot insertion and
-// removal after each step, and cutting. Knows nothing of Bullet.
+// step solved by a block-banded Cholesky in O(n), pins and clamps (pin + tangent direction) by
+// Lagrange multipliers, knot insertion and removal after each step, and cutting. Knows nothing of
+// Bullet.
 //
 // Units: metres, seconds, kilograms, newtons. The curve parameter s runs over
 // [beginParameter(), endParameter()]; for ropes created from a segment it is the rest arclength.
 //
 // Step: (M + hD + h^2 K) dv = h (F + f_ext - D v - h K v), v += dv, q += h v (method §8, eqs. 22–23), with
 // D = massDamping M + stiffnessDamping K (Rayleigh), K the stretching stiffness with the Gauss–Newton
-// clamp plus the constant bending stiffness, and pins imposed on the end-of-step positions.
+// clamp plus the constant bending stiffness, and pins and clamps imposed on the end-of-step positions.
 // Then adaptivity ([A] §4): knots at interaction points, insertion where the control polygon bends
 // (included angle < insertAngle), removal where it is straight (> removeAngle) and the removal error
 // is within removalErrorBound; counts stay within [minControlPoints, maxControlPoints].
@@ -30,8 +31,9 @@
 //   addSpringSample(s, f0, K_c, D_c)  the same, for one quadrature sample of a distributed load (a
 //       line contact, docs/method.md): it enters the system identically but is not an interaction
 //       point, so it does not ask adaptivity for a knot at s.
-// Interaction points (pins, forces, impulses, springs, markInteraction) also get a knot at s when
-// adaptive.
+// Interaction points (pins, clamps, forces, impulses, springs, markInteraction) also get a knot at s
+// when adaptive; a clamp also keeps the nearest knot on either side, so that no removal turns its
+// tangent.
 
 #include <utility>
 #include <vector>
@@ -131,8 +133,26 @@ class Rod {
   int pin(double s);
   // Target for the end of the next step (moving pins). Throws for an unknown id ("id") or non-finite target.
   void setPinTarget(int id, const Vec3& target);
-  void releasePin(int id);  // throws for an unknown id
+  void releasePin(int id);  // throws for an unknown id ("id"), or a clamp's id (use releaseClamp)
+  // Pins and clamps (Pin::isClamp()), in the order they were made.
   const std::vector<Pin>& pins() const { return pins_; }
+
+  // ---- clamps ----
+  // Holds C(s) at target AND the curve's tangent at s along direction (any length > 0; stored as a
+  // unit vector): a weld, as for a cantilever's root, a cable leaving a connector or a hose on a
+  // nozzle. Exact at the end of every step like a pin (pin_constraints.h explains the two tangent
+  // rows P C'(s) = 0, P = I - d d^T). The default form clamps the rope where it is now, along its
+  // current tangent. Throws InvalidArgument, changing nothing: "s" outside the valid range, NaN, a
+  // pin or clamp already at s, or (default form) a zero tangent C'(s); "target[c]" / "direction[c]"
+  // not finite; "direction" of zero length; "clamps" when the rod's constraints would exceed its
+  // degrees of freedom (3 per pin, 5 per clamp, at most 3 per control point). Returns the clamp's id
+  // (pins and clamps share one id sequence).
+  int clamp(double s, const Vec3& target, const Vec3& direction);
+  int clamp(double s);
+  // Target point and direction for the end of the next step (a moving clamp). Throws for an unknown
+  // id or a pin's id ("id"), and like clamp() for the target and direction.
+  void setClampTarget(int id, const Vec3& target, const Vec3& direction);
+  void releaseClamp(int id);  // throws for an unknown id or a pin's id ("id")
 
   // ---- loads for the next step (see the header comment) ----
   void addForce(double s, const Vec3& force);
@@ -202,7 +222,14 @@ class Rod {
   static Rod fromCurve(const RodSettings& settings, const KnotVector& knots, const PointList& points,
                        RestShape rest);
   void validateParameter(double s) const;
-  int findPin(int id) const;
+  // Index of the pin (clamp = false) or clamp with this id; "id" for an unknown id or the other kind.
+  int findPin(int id, bool clamp) const;
+  int constraintRowCount() const;  // 3 per pin, 5 per clamp
+  // Adds a pin (direction zero) or clamp (unit direction) after the checks both share ("s" taken,
+  // too many constraint rows); s and target are already validated.
+  int addPin(double s, const Vec3& target, const Vec3& direction);
+  // Appends the knots next to each clamp, so that adaptivity keeps the tangent there exact.
+  void addClampNeighbours(std::vector<double>& interactions) const;
   bool assembleAndSolve(double h, StepReport& report);
   void adapt(StepReport& report);
   void insertKnotUnchecked(double s);

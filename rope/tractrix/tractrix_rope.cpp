@@ -8,6 +8,7 @@
 #include "rope/spline/arc_length.h"
 #include "rope/spline/control_polygon.h"
 #include "rope/spline/curve_interpolation.h"
+#include "rope/tractrix/length_correction.h"
 #include "rope/tractrix/tractrix_chain.h"
 #include "rope/tractrix/tractrix_segment.h"
 
@@ -138,6 +139,9 @@ const TractrixStepReport& TractrixRope::moveLeadingEnd(const Vec3& target) {
   report_.merges = 0;
   report_.reachedMaxControlPoints = false;
   report_.mergeRecords.clear();
+  report_.correctionIterations = 0;
+
+  double correctedLength = -1.0;  // the correction's own measurement of the curve, when it ran
 
   // [B] §3.3 step 3: the tractrix pass over the polygon keeps every side length.
   tractrixChainPass(points_, sides_, target);
@@ -156,14 +160,33 @@ const TractrixStepReport& TractrixRope::moveLeadingEnd(const Vec3& target) {
       limits.minControlPoints = settings_.effectiveMinControlPoints();
       report_.merges = mergeStraightCorners(knots_, points_, limits, report_.mergeRecords);
     }
-    // Insertion and removal change the polygon: the new sides are the lengths the pass keeps next.
-    if (report_.insertions > 0 || report_.merges > 0) recomputeSides();
+    bool changed = report_.insertions > 0 || report_.merges > 0;
+    if (settings_.lengthCorrection == TractrixLengthCorrection::kRestoreCurveLength) {
+      // Beyond [B]: re-lay the polygon so that the curve keeps its initial length (length_correction.h),
+      // measured with the same quadrature as the reported curve length.
+      LengthCorrectionOptions options;
+      options.gaussPoints = settings_.lengthGaussPoints;
+      const LengthCorrectionResult correction =
+          restoreCurveLength(knots_, points_, initialLength_, options, correctionWorkspace_);
+      correctedLength = correction.lengthAfter;
+      report_.lengthErrorBeforeCorrection = (correction.lengthBefore - initialLength_) / initialLength_;
+      report_.correctionIterations = correction.iterations;
+      if (!correction.feasible) ++report_.correctionFailures;
+      changed = changed || correction.applied;
+    }
+    // Insertion, removal and the correction change the polygon: the new sides are the lengths the
+    // pass keeps next.
+    if (changed) recomputeSides();
   }
 
   report_.controlPointCount = controlPointCount();
-  report_.curveLength = measureCurveLength();
+  report_.curveLength = correctedLength >= 0.0 ? correctedLength : measureCurveLength();
   report_.polygonLength = polygonLength(points_);
   report_.lengthError = (report_.curveLength - initialLength_) / initialLength_;
+  if (settings_.lengthCorrection != TractrixLengthCorrection::kRestoreCurveLength ||
+      settings_.variant == TractrixVariant::kPolyline) {
+    report_.lengthErrorBeforeCorrection = report_.lengthError;
+  }
   return report_;
 }
 

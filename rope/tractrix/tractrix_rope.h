@@ -1,7 +1,8 @@
 #pragma once
 // A kinematic rope driven by its leading end ([B] §3.3): the tractrix chain pass moves the control
-// polygon (or, for TRX, the polyline itself), then the polygon is adapted by angle thresholds so
-// that the curve keeps its length approximately. Purely geometric: no mass, no time step.
+// polygon (or, for TRX, the polyline itself), then the polygon is adapted by angle thresholds ([B]),
+// and finally (by default, beyond [B]) re-laid so that the curve keeps its initial length
+// (length_correction.h). Purely geometric: no mass, no time step.
 //
 // The leading end is control point 0 (the curve is clamped, so it is also the curve's end C(begin)).
 // A driver — a scripted path, or a rigid body's point in a physics engine — calls moveLeadingEnd()
@@ -16,6 +17,7 @@
 #include "rope/common/types.h"
 #include "rope/spline/bspline_curve.h"
 #include "rope/spline/knot_vector.h"
+#include "rope/tractrix/length_correction.h"
 #include "rope/tractrix/polygon_adaptation.h"
 #include "rope/tractrix/tractrix_settings.h"
 
@@ -32,6 +34,14 @@ struct TractrixStepReport {
   double curveLength = 0.0;        // arc length of the curve after the step (TRX: polyline length)
   double polygonLength = 0.0;      // length of the control polygon (TRX: the same polyline)
   double lengthError = 0.0;        // (curveLength - initialLength) / initialLength, signed
+  // The same error after the pass and the adaptation, before settings.lengthCorrection re-laid the
+  // polygon (equal to lengthError when there is no correction).
+  double lengthErrorBeforeCorrection = 0.0;
+  int correctionIterations = 0;    // Newton iterations of the length correction in this step
+  // Steps so far in which the length correction found no admissible polygon (it would have shrunk a
+  // side to less than half, or did not converge) and left the polygon uncorrected. A warning count:
+  // the next step corrects again from wherever this one left the curve.
+  long correctionFailures = 0;
   std::vector<MergeRecord> mergeRecords;  // one per merge in this step, with its own error
 };
 
@@ -46,8 +56,9 @@ class TractrixRope {
   explicit TractrixRope(const PointList& initialShape, const TractrixSettings& settings = {});
 
   // One step: moves the leading end to target (straight-line move), runs the tractrix chain pass,
-  // then (spline variants) subdivides and merges. Throws InvalidArgument("target[c]", ...) for a
-  // coordinate that is not finite or beyond kMaxTractrixCoordinate, leaving the rope unchanged.
+  // then (spline variants) subdivides, merges and corrects the length (settings.lengthCorrection).
+  // Throws InvalidArgument("target[c]", ...) for a coordinate that is not finite or beyond
+  // kMaxTractrixCoordinate, leaving the rope unchanged.
   // The report stays valid until the next call.
   const TractrixStepReport& moveLeadingEnd(const Vec3& target);
 
@@ -86,6 +97,7 @@ class TractrixRope {
   double initialLength_ = 0.0;
   double minSide_ = 0.0;  // merges may not create a side shorter than this (metres)
   TractrixStepReport report_;
+  LengthCorrectionWorkspace correctionWorkspace_;  // scratch, no state
 };
 
 }  // namespace rope

@@ -21,6 +21,11 @@ void validateTractrixSettings(const TractrixSettings& settings) {
       variant != TractrixVariant::kSplineSubdivideMerge) {
     throw InvalidArgument("settings.variant", std::to_string(static_cast<int>(variant)), "is not a TractrixVariant");
   }
+  if (settings.lengthCorrection != TractrixLengthCorrection::kNone &&
+      settings.lengthCorrection != TractrixLengthCorrection::kRestoreCurveLength) {
+    throw InvalidArgument("settings.lengthCorrection", std::to_string(static_cast<int>(settings.lengthCorrection)),
+                          "is not a TractrixLengthCorrection");
+  }
   // Finiteness before any ordered comparison (NaN comparisons raise FE_INVALID).
   requireFinite("settings.subdivisionAngle", settings.subdivisionAngle);
   requireFinite("settings.mergingAngle", settings.mergingAngle);

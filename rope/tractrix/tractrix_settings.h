@@ -14,6 +14,12 @@ enum class TractrixVariant {
   kSplineSubdivideMerge,    // TRX_SD_MRG: as TRX_SD, plus merging above mergingAngle
 };
 
+// What keeps the curve's length (length_correction.h). Beyond [B].
+enum class TractrixLengthCorrection {
+  kNone,                // [B] as published: the tractrix keeps the polygon's sides, the curve's length drifts
+  kRestoreCurveLength,  // after every step the polygon is re-laid so that the curve keeps its initial length
+};
+
 constexpr double kTractrixPi = 3.14159265358979323846;
 constexpr double degrees(double value) { return value * (kTractrixPi / 180.0); }  // degrees -> radians
 constexpr double toDegrees(double radians) { return radians * (180.0 / kTractrixPi); }
@@ -54,6 +60,12 @@ struct TractrixSettings {
   // shape error, which bounds the displacement). Keeps the motion visibly continuous; [B] looks at
   // the length error only. Finite, > 0; 1e300 effectively switches it off.
   double maxMergeShapeError = 0.01;
+
+  // kRestoreCurveLength (the default) re-lays the control polygon after every step so that the curve's
+  // length stays the initial length (to 1e-12 relative in the quadrature below); kNone is [B]'s
+  // TRX_SD / TRX_SD_MRG as published, whose curve loses length on tight bends. kPolyline ignores it
+  // (its polyline keeps its length exactly).
+  TractrixLengthCorrection lengthCorrection = TractrixLengthCorrection::kRestoreCurveLength;
 
   // Gauss–Legendre points per knot span for the per-step curve length (1..kMaxGaussPoints). The
   // integrand is smooth on a span; 8 points give ~1e-9 relative on the shapes a rope takes.

@@ -2,6 +2,7 @@
 // per segment for chains of 20 .. 10,000 segments (docs/method.md §13: O(n)).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "demos/scenes/arc_path.h"
@@ -22,12 +23,15 @@ PointList experimentTargets() {
 }
 
 // Construction (interpolation of the 5 m straight object) plus the 52 steps, as a user would run it.
-void runExperiment(benchmark::State& state, rope::TractrixVariant variant, int segments) {
+void runExperiment(benchmark::State& state, rope::TractrixVariant variant, int segments,
+                   rope::TractrixLengthCorrection correction = rope::TractrixLengthCorrection::kRestoreCurveLength) {
   const PointList targets = experimentTargets();
   const PointList shape = {Vec3(0, 0, 0), Vec3(-5, 0, 0)};
   rope::TractrixSettings settings;
   settings.variant = variant;
   settings.segmentCount = segments;
+  settings.lengthCorrection = correction;
+  settings.maxControlPoints = std::max(settings.maxControlPoints, 4 * segments);
   int maxCount = 0;
   for (auto _ : state) {
     rope::TractrixRope rope(shape, settings);
@@ -43,6 +47,18 @@ void runExperiment(benchmark::State& state, rope::TractrixVariant variant, int s
 void BM_Experiment52Steps_TRX_SD_MRG(benchmark::State& state) {
   runExperiment(state, rope::TractrixVariant::kSplineSubdivideMerge, 6);
 }
+// [B] as published (no length correction): the correction's cost is the difference.
+void BM_Experiment52Steps_TRX_SD_MRG_AsPublished(benchmark::State& state) {
+  runExperiment(state, rope::TractrixVariant::kSplineSubdivideMerge, 6, rope::TractrixLengthCorrection::kNone);
+}
+// The same with n initial sides, with and without the correction: both stay O(n) per step.
+void BM_Experiment52Steps_TRX_SD_MRG_Sides(benchmark::State& state) {
+  runExperiment(state, rope::TractrixVariant::kSplineSubdivideMerge, static_cast<int>(state.range(0)));
+}
+void BM_Experiment52Steps_TRX_SD_MRG_Sides_AsPublished(benchmark::State& state) {
+  runExperiment(state, rope::TractrixVariant::kSplineSubdivideMerge, static_cast<int>(state.range(0)),
+                rope::TractrixLengthCorrection::kNone);
+}
 void BM_Experiment52Steps_TRX_SD(benchmark::State& state) {
   runExperiment(state, rope::TractrixVariant::kSplineSubdivide, 6);
 }
@@ -50,6 +66,9 @@ void BM_Experiment52Steps_TRX_20(benchmark::State& state) {
   runExperiment(state, rope::TractrixVariant::kPolyline, 20);
 }
 BENCHMARK(BM_Experiment52Steps_TRX_SD_MRG)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Experiment52Steps_TRX_SD_MRG_AsPublished)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Experiment52Steps_TRX_SD_MRG_Sides)->Arg(60)->Arg(600)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Experiment52Steps_TRX_SD_MRG_Sides_AsPublished)->Arg(60)->Arg(600)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Experiment52Steps_TRX_SD)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Experiment52Steps_TRX_20)->Unit(benchmark::kMicrosecond);
 

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <random>
+
+#include "rope/spline/bspline_curve.h"
 
 namespace rope {
 namespace {
@@ -36,46 +39,62 @@ ConstraintRows row(int first, std::vector<double> basis, const Vec3& rhs) {
   return r;
 }
 
-TEST(ConstrainedSolver, MatchesTheDenseKktSolution) {
+// The rows as dense gradients over the n unknowns (one per row) and their right-hand sides.
+void denseRows(const std::vector<ConstraintRows>& rows, int n, std::vector<Eigen::VectorXd>& gradients,
+               std::vector<double>& values) {
+  for (const ConstraintRows& c : rows) {
+    for (int k = 0; k < c.rowCount; ++k) {
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+      for (int a = 0; a < c.count; ++a)
+        for (int axis = 0; axis < 3; ++axis) g(3 * (c.first + a) + axis) = c.basis[a] * c.directions[k][axis];
+      gradients.push_back(g);
+      values.push_back(c.rhs[k]);
+    }
+  }
+}
+
+// Solves S x = r - G^T lambda, G x = c with the banded solver and checks it against the dense KKT
+// system, the rows' values and (homogeneous form) G y = 0.
+void checkAgainstDenseKkt(const std::vector<ConstraintRows>& rows) {
   SymmetricBandedMatrix banded;
-  const int blocks = 14;
-  const Eigen::MatrixXd S = makeSystem(blocks, 3, banded);
+  const Eigen::MatrixXd S = makeSystem(14, 3, banded);
   const int n = static_cast<int>(S.rows());
-  std::vector<ConstraintRows> rows = {row(0, {1.0, 0.0, 0.0, 0.0}, Vec3(0.1, -0.2, 0.3)),
-                                      row(5, {0.1, 0.5, 0.3, 0.1}, Vec3(1.0, 2.0, -1.0)),
-                                      row(10, {0.0, 0.0, 0.0, 1.0}, Vec3(-0.5, 0.0, 0.25))};
-  Eigen::VectorXd r = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0);
-  // Dense KKT reference.
-  const int m = 3 * static_cast<int>(rows.size());
+  const Eigen::VectorXd r = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0);
+  std::vector<Eigen::VectorXd> gradients;
+  std::vector<double> values;
+  denseRows(rows, n, gradients, values);
+  const int m = static_cast<int>(gradients.size());
   Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + m, n + m);
   Eigen::VectorXd rhs(n + m);
   kkt.topLeftCorner(n, n) = S;
   rhs.head(n) = r;
-  for (int p = 0; p < static_cast<int>(rows.size()); ++p)
-    for (int axis = 0; axis < 3; ++axis) {
-      const ConstraintRows& c = rows[static_cast<size_t>(p)];
-      for (int a = 0; a < c.count; ++a) {
-        kkt(n + 3 * p + axis, 3 * (c.first + a) + axis) = c.basis[a];
-        kkt(3 * (c.first + a) + axis, n + 3 * p + axis) = c.basis[a];
-      }
-      rhs(n + 3 * p + axis) = c.rhs[axis];
-    }
+  for (int k = 0; k < m; ++k) {
+    kkt.block(n + k, 0, 1, n) = gradients[static_cast<size_t>(k)].transpose();
+    kkt.block(0, n + k, n, 1) = gradients[static_cast<size_t>(k)];
+    rhs(n + k) = values[static_cast<size_t>(k)];
+  }
   const Eigen::VectorXd expected = kkt.fullPivLu().solve(rhs).head(n);
   ASSERT_TRUE(banded.factorize());
   ConstrainedSolver solver;
   Eigen::VectorXd x = r;
   ASSERT_TRUE(solver.solve(banded, rows, x.data()));
   EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm());
-  // The constraints hold.
-  for (const ConstraintRows& c : rows) {
-    Vec3 value = Vec3::Zero();
-    for (int a = 0; a < c.count; ++a) value += c.basis[a] * Vec3(x(3 * (c.first + a)), x(3 * (c.first + a) + 1), x(3 * (c.first + a) + 2));
-    EXPECT_LT((value - c.rhs).norm(), 1e-12);
+  for (int k = 0; k < m; ++k) {
+    EXPECT_NEAR(gradients[static_cast<size_t>(k)].dot(x), values[static_cast<size_t>(k)], 1e-12);
   }
+  Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(n, 0.5, -2.0);
+  solver.solveHomogeneous(banded, y.data());
+  for (int k = 0; k < m; ++k) EXPECT_NEAR(gradients[static_cast<size_t>(k)].dot(y), 0.0, 1e-12);
   // Without constraints it is the plain solve.
-  Eigen::VectorXd y = r;
-  ASSERT_TRUE(solver.solve(banded, {}, y.data()));
-  EXPECT_LT((y - S.ldlt().solve(r)).norm(), 1e-12 * y.norm());
+  Eigen::VectorXd z = r;
+  ASSERT_TRUE(solver.solve(banded, {}, z.data()));
+  EXPECT_LT((z - S.ldlt().solve(r)).norm(), 1e-12 * z.norm());
+}
+
+TEST(ConstrainedSolver, MatchesTheDenseKktSolution) {
+  checkAgainstDenseKkt({row(0, {1.0, 0.0, 0.0, 0.0}, Vec3(0.1, -0.2, 0.3)),
+                        row(5, {0.1, 0.5, 0.3, 0.1}, Vec3(1.0, 2.0, -1.0)),
+                        row(10, {0.0, 0.0, 0.0, 1.0}, Vec3(-0.5, 0.0, 0.25))});
 }
 
 TEST(ConstrainedSolver, DependentConstraintsAreReported) {
@@ -86,6 +105,99 @@ TEST(ConstrainedSolver, DependentConstraintsAreReported) {
   ConstrainedSolver solver;
   std::vector<double> x(static_cast<size_t>(banded.size()), 1.0);
   EXPECT_FALSE(solver.solve(banded, {a, a}, x.data()));
+}
+
+TEST(ConstrainedSolver, DirectionalRowsMatchTheDenseKktSolution) {
+  // Pins (three axis rows) mixed with clamp-style rows along arbitrary directions (two per block).
+  std::vector<ConstraintRows> rows = {row(0, {1.0, 0.0, 0.0, 0.0}, Vec3(0.1, -0.2, 0.3)),
+                                      row(6, {-0.9, 0.3, 0.5, 0.1}, Vec3(0.4, -1.0, 0.0)),
+                                      row(10, {0.0, 0.0, 0.0, 1.0}, Vec3(-0.5, 0.0, 0.25)),
+                                      row(10, {0.0, 0.0, -3.0, 3.0}, Vec3(0.7, 0.2, 0.0))};
+  for (int i : {1, 3}) {
+    const Vec3 d = i == 1 ? Vec3(0.3, -0.5, 0.8).normalized() : Vec3::UnitZ();
+    orthonormalComplement(d, rows[static_cast<size_t>(i)].directions[0], rows[static_cast<size_t>(i)].directions[1]);
+    rows[static_cast<size_t>(i)].rowCount = 2;
+  }
+  checkAgainstDenseKkt(rows);
+}
+
+TEST(ConstraintRows, OrthonormalComplementIsRightHandedAndDeterministic) {
+  for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0.3, -0.5, 0.8).normalized(),
+                        Vec3(1, 1e-17, -1e-17).normalized()}) {
+    Vec3 e1, e2;
+    orthonormalComplement(d, e1, e2);
+    EXPECT_NEAR(e1.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(e2.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(e1.dot(d), 0.0, 1e-15);
+    EXPECT_NEAR(e2.dot(d), 0.0, 1e-15);
+    EXPECT_NEAR(e1.dot(e2), 0.0, 1e-15);
+    EXPECT_NEAR(e1.cross(e2).dot(d), 1.0, 1e-15);
+  }
+}
+
+// The rows are the Jacobian of the constraint functions g(q) = C(s) (pin) and g_k(q) = span e_k . C'(s)
+// (clamp), which are linear in q: central differences are exact up to rounding. Their right-hand
+// side makes the end-of-step positions q + h (v + dv) satisfy g = target (pin) or g = 0 (clamp):
+// G dv - c = (g(q + h (v + dv)) - g_target) / h for any dv.
+TEST(ConstraintRows, PinAndClampRowsAreTheJacobianOfTheirConstraints) {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const KnotVector knots = KnotVector::clampedUniform(3, 9, 0.0, 2.0);
+  PointList q(9), v(9), dv(9);
+  for (int i = 0; i < 9; ++i) {
+    q[static_cast<size_t>(i)] = Vec3(0.25 * i, 0.1 * uniform(rng), 0.1 * uniform(rng));
+    v[static_cast<size_t>(i)] = Vec3(uniform(rng), uniform(rng), uniform(rng));
+    dv[static_cast<size_t>(i)] = Vec3(uniform(rng), uniform(rng), uniform(rng));
+  }
+  const double h = 1.0 / 60;
+  const Vec3 direction = Vec3(0.9, 0.3, -0.2).normalized();
+  const Vec3 target(0.7, 0.05, -0.02);
+  for (double s : {0.0, 0.37, 1.0, 1.61, 2.0}) {
+    const ConstraintRows pin = pinRows(knots, q, v, s, target, h);
+    const ConstraintRows tangent = clampTangentRows(knots, q, v, s, direction, h);
+    EXPECT_EQ(pin.rowCount, 3);
+    EXPECT_EQ(tangent.rowCount, 2);
+    const int k = knots.findSpan(s);
+    const double span = knots[k + 1] - knots[k];
+    auto pinValue = [&](const PointList& points, int row) { return evaluateCurve(knots, points, s).position[row]; };
+    auto tangentValue = [&](const PointList& points, int row) {
+      return span * tangent.directions[row].dot(evaluateCurve(knots, points, s).firstDerivative);
+    };
+    for (int i = 0; i < 9; ++i) {
+      for (int axis = 0; axis < 3; ++axis) {
+        PointList plus = q, minus = q;
+        const double eps = 1e-6;
+        plus[static_cast<size_t>(i)][axis] += eps;
+        minus[static_cast<size_t>(i)][axis] -= eps;
+        auto coefficient = [&](const ConstraintRows& rows, int row) {
+          const int a = i - rows.first;
+          return a >= 0 && a < rows.count ? rows.basis[a] * rows.directions[row][axis] : 0.0;
+        };
+        for (int row = 0; row < 3; ++row) {
+          const double fd = (pinValue(plus, row) - pinValue(minus, row)) / (2 * eps);
+          EXPECT_NEAR(coefficient(pin, row), fd, 1e-9) << "pin s " << s << " point " << i << " axis " << axis;
+        }
+        for (int row = 0; row < 2; ++row) {
+          const double fd = (tangentValue(plus, row) - tangentValue(minus, row)) / (2 * eps);
+          EXPECT_NEAR(coefficient(tangent, row), fd, 1e-8) << "clamp s " << s << " point " << i << " axis " << axis;
+        }
+      }
+    }
+    PointList after(9);
+    for (size_t i = 0; i < 9; ++i) after[i] = q[i] + h * (v[i] + dv[i]);
+    for (int row = 0; row < 3; ++row) {
+      double g = 0.0;
+      for (int a = 0; a < pin.count; ++a) g += pin.basis[a] * dv[static_cast<size_t>(pin.first + a)][row];
+      EXPECT_NEAR(g - pin.rhs[row], (pinValue(after, row) - target[row]) / h, 1e-10);
+    }
+    for (int row = 0; row < 2; ++row) {
+      double g = 0.0;
+      for (int a = 0; a < tangent.count; ++a) {
+        g += tangent.basis[a] * tangent.directions[row].dot(dv[static_cast<size_t>(tangent.first + a)]);
+      }
+      EXPECT_NEAR(g - tangent.rhs[row], tangentValue(after, row) / h, 1e-10);
+    }
+  }
 }
 
 }  // namespace

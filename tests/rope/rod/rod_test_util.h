@@ -39,7 +39,7 @@ inline ::testing::AssertionResult sameState(const RodSnapshot& a, const RodSnaps
   if (a.pins.size() != b.pins.size()) return ::testing::AssertionFailure() << "pin count differs";
   for (size_t i = 0; i < a.pins.size(); ++i) {
     if (a.pins[i].id != b.pins[i].id || a.pins[i].parameter != b.pins[i].parameter ||
-        a.pins[i].target != b.pins[i].target)
+        a.pins[i].target != b.pins[i].target || a.pins[i].direction != b.pins[i].direction)
       return ::testing::AssertionFailure() << "pin " << i << " differs";
   }
   return ::testing::AssertionSuccess();

@@ -33,6 +33,8 @@ TEST(TractrixSettings, DefaultsAreThePapersAndValid) {
   EXPECT_NEAR(toDegrees(settings.subdivisionAngle), 140.0, 1e-12);
   EXPECT_NEAR(toDegrees(settings.mergingAngle), 160.0, 1e-12);
   EXPECT_EQ(settings.effectiveMinControlPoints(), 7);
+  // Beyond [B]: the curve keeps its length unless asked for the paper's behaviour.
+  EXPECT_EQ(settings.lengthCorrection, TractrixLengthCorrection::kRestoreCurveLength);
 }
 
 TEST(TractrixSettings, DegreeHelpers) {
@@ -71,6 +73,8 @@ TEST(TractrixSettings, RejectsBadCounts) {
   expectRejected([](TractrixSettings& s) { s.maxMergeShapeError = std::nan(""); }, "settings.maxMergeShapeError");
   expectRejected([](TractrixSettings& s) { s.lengthGaussPoints = 33; }, "settings.lengthGaussPoints");
   expectRejected([](TractrixSettings& s) { s.variant = static_cast<TractrixVariant>(7); }, "settings.variant");
+  expectRejected([](TractrixSettings& s) { s.lengthCorrection = static_cast<TractrixLengthCorrection>(2); },
+                 "settings.lengthCorrection");
   expectRejected([](TractrixSettings& s) {
     s.variant = TractrixVariant::kPolyline;
     s.segmentCount = 0;

@@ -179,20 +179,7 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
   endSubstep(h);
 }
 
-void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
-  contacts_.clear();
-  pending_.clear();
-  lastStep_ = RopeStepRecord();
-  lastStep_.rope = this;
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
-  proxies_->rebuild(rod_);
-  bodyContacts_.gather(
-      rod_, *proxies_, candidates, settings_,
-      [this](const btCollisionObject& object, double s0, double s1) { return attachedNear(object, s0, s1); }, h,
-      contacts_, lastStep_);
-  for (RopeContactRecord& record : contacts_) record.rope = this;
-
+void RopeObject::queueAttachments(double h) {
   for (std::size_t i = 0; i < attachments_.size(); ++i) {
     Attachment& attachment = attachments_[i];
     attachment.lastForce.setZero();
@@ -225,8 +212,9 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
     pending.attachment = static_cast<int>(i);
     pending_.push_back(pending);
   }
+}
 
-  const Clock::time_point solveStart = Clock::now();
+StepReport RopeObject::solveTrialWithContacts(double h) {
   // Unilateral contact and Coulomb friction by a small active set (body_contacts.h: update): samples
   // that come out pulling are released, sticking samples that need more than mu f_n slide, and the
   // trial step is solved again, at most kMaxSolvePasses times. The rod itself does not change until
@@ -243,6 +231,27 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
     if (!report.ok || lastStep_.contacts == 0 || pass >= kMaxSolvePasses) break;
     if (!bodyContacts_.update(rod_, h, contacts_, lastStep_)) break;
   }
+  return report;
+}
+
+void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
+  contacts_.clear();
+  pending_.clear();
+  lastStep_ = RopeStepRecord();
+  lastStep_.rope = this;
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  proxies_->rebuild(rod_);
+  bodyContacts_.gather(
+      rod_, *proxies_, candidates, settings_,
+      [this](const btCollisionObject& object, double s0, double s1) { return attachedNear(object, s0, s1); }, h,
+      contacts_, lastStep_);
+  for (RopeContactRecord& record : contacts_) record.rope = this;
+
+  queueAttachments(h);
+
+  const Clock::time_point solveStart = Clock::now();
+  const StepReport report = solveTrialWithContacts(h);
   lastStep_.ok = report.ok;
   lastStep_.failure = report.failure;
   if (!report.ok) rod_.clearLoads();  // the rod keeps its state; no trial for rope-rope contact

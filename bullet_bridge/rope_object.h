@@ -107,6 +107,10 @@ class RopeObject {
   void enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld);
   void leaveWorld();
   int findAttachment(int id) const;
+  // The springs of the body attachments for this substep (pending_), capped on light bodies.
+  void queueAttachments(double h);
+  // The rod's trial step with the attachments and the body contacts' active set (body_contacts.h).
+  StepReport solveTrialWithContacts(double h);
   // Whether the rope is attached to object within 4 radii of the capsule [s0, s1]: the rope's end sits
   // in the body's surface there, so those contacts are ignored.
   bool attachedNear(const btCollisionObject& object, double s0, double s1) const;

@@ -10,8 +10,9 @@
 //   dynamicsWorld.stepSimulation(1.0 / 60.0, 4, 1.0 / 240.0);
 //   ropes.removeRope(rope);
 //
-// The rope's gravity, material and discretisation come from its RodSettings (set the gravity to the
-// world's). Between steps the rod may be read freely; change it (pins, setControlPoints, ...) only
+// The rope's material and discretisation come from its RodSettings; its gravity from the Bullet world
+// it is in (every substep, BulletRopeSettings::gravitySource / gravityScale). Between steps the rod
+// may be read freely; change it (pins, setControlPoints, ...) only
 // through rod() while no stepSimulation runs.
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>

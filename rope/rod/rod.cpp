@@ -225,6 +225,13 @@ double Rod::gravityEnergy() const {
   return sum;
 }
 
+void Rod::setGravity(const Vec3& gravity) {
+  requireFiniteVector("gravity", gravity);
+  if (settings_.gravity == gravity) return;  // the common case in a world: nothing to invalidate
+  settings_.gravity = gravity;
+  trialValid_ = false;
+}
+
 void Rod::setControlPoints(const PointList& points) {
   requirePoints("points", points, points_.size());
   points_ = points;

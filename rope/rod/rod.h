@@ -121,6 +121,11 @@ class Rod {
   double potentialEnergy() const { return stretchingEnergy() + bendingEnergy() + gravityEnergy(); }
   double totalEnergy() const { return kineticEnergy() + potentialEnergy(); }
 
+  // Gravity from the next step on (m/s^2, finite, else InvalidArgument "gravity[i]"): replaces
+  // settings().gravity. A rope in a Bullet world follows the world's gravity through this by default
+  // (BulletRopeSettings::gravitySource).
+  void setGravity(const Vec3& gravity);
+
   // Replace positions and/or velocities (same count, finite; "points"/"velocities" in errors).
   void setControlPoints(const PointList& points);
   void setVelocities(const PointList& velocities);

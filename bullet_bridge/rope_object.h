@@ -63,6 +63,15 @@ class RopeObject {
   void removeAttachment(int id);
   const std::vector<Attachment>& attachments() const { return attachments_; }
 
+  // ---- loads ----
+  // A force (N) or impulse (N s) at C(s), world frame, acting in the next substep only, like the rod's
+  // own loads (Rod::addForce / addImpulse, which work here too: a substep takes every load queued on
+  // rod() and clears them). A force that lasts is applied again before every substep, e.g. from
+  // RopeWorld::setSubstepCallback, which runs after each one. Throws InvalidArgument naming "s" or
+  // "force[i]" / "impulse[i]" and queues nothing.
+  void applyForce(double s, const btVector3& force);
+  void applyImpulse(double s, const btVector3& impulse);
+
   // ---- cutting ([A] §5.1) ----
   // Cuts the rope at s (strictly inside; not exactly at a pin or a body attachment): this object keeps
   // [beginParameter, s] and the returned one is [s, endParameter] (Rod::cut: the two pieces share no
@@ -136,6 +145,7 @@ class RopeObject {
   std::vector<RopeContactRecord> contacts_;
   RopeStepRecord lastStep_;
   std::vector<PendingSpring> pending_;
+  Rod::LoadQueue userLoads_;  // what the user queued on the rod for this substep
   BodyContacts bodyContacts_;
 };
 

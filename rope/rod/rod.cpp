@@ -413,6 +413,22 @@ void Rod::queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffn
   trialValid_ = false;
 }
 
+Rod::LoadQueue Rod::takeLoads() {
+  LoadQueue queue;
+  queue.loads.swap(loads_);
+  queue.springs.swap(springs_);
+  queue.marked.swap(markedInteractions_);
+  trialValid_ = false;
+  return queue;
+}
+
+void Rod::addLoads(const LoadQueue& queue) {
+  loads_.insert(loads_.end(), queue.loads.begin(), queue.loads.end());
+  springs_.insert(springs_.end(), queue.springs.begin(), queue.springs.end());
+  markedInteractions_.insert(markedInteractions_.end(), queue.marked.begin(), queue.marked.end());
+  trialValid_ = false;
+}
+
 void Rod::clearLoads() {
   loads_.clear();
   springs_.clear();

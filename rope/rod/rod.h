@@ -222,6 +222,25 @@ class Rod {
   void queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping,
                    bool interaction);
 
+
+ public:
+  // The queued loads as a value, for a bridge that solves one step several times with loads of its
+  // own: takeLoads() empties the rod's queue into it, addLoads() queues its loads again (they were
+  // validated when they were first queued).
+  class LoadQueue {
+   public:
+    bool empty() const { return loads.empty() && springs.empty() && marked.empty(); }
+
+   private:
+    friend class Rod;
+    std::vector<PointLoad> loads;
+    std::vector<Spring> springs;
+    std::vector<double> marked;
+  };
+  LoadQueue takeLoads();
+  void addLoads(const LoadQueue& queue);
+
+ private:
   Rod(const RodSettings& settings, KnotVector knots, PointList points, PointList velocities,
       PointList rest, int gaussCount);
   static Rod fromCurve(const RodSettings& settings, const KnotVector& knots, const PointList& points,

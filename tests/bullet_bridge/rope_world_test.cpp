@@ -383,5 +383,38 @@ TEST(RopeWorld, GravitySettingsRejectBadInputNamingTheField) {
   EXPECT_EQ(rod.settings().gravity, RodSettings().gravity);  // unchanged
 }
 
+// Loads on a rope in a world act in the next substep, whether given to the RopeObject or queued on
+// its rod: an impulse J changes the momentum by exactly J, a force F by F h, and neither acts again.
+TEST(RopeWorldScenario, ForcesAndImpulsesActInTheNextSubstepOnly) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  // Knot removal changes a moving rope's momentum by up to mass * removalVelocityErrorBound (measured
+  // here: 3e-6 N s); this test checks the loads, so the knot vector stays fixed.
+  RodSettings fixedKnots;
+  fixedKnots.adaptive = false;
+  RopeObject rope(Rod::fromSegment(fixedKnots, Vec3(0, 1, 0), Vec3(1, 1, 0)));
+  physics.ropes().addRope(rope);
+  const Vec3 impulse(0.01, -0.02, 0.005);
+  rope.applyImpulse(0.3, btVector3(0.01, -0.02, 0.005));
+  stepWorld(physics.world(), 1);
+  EXPECT_LT((rope.rod().momentum() - impulse).norm(), 1e-12 * impulse.norm());
+  stepWorld(physics.world(), 1);  // acted once
+  EXPECT_LT((rope.rod().momentum() - impulse).norm(), 1e-12 * impulse.norm());
+  const Vec3 force(0.5, 0.0, -0.25);
+  rope.applyForce(0.7, btVector3(0.5, 0.0, -0.25));
+  rope.rod().addForce(0.1, force);  // queued on the rod: not dropped either
+  stepWorld(physics.world(), 1);
+  const Vec3 expected = impulse + 2.0 * kStep * force;
+  EXPECT_LT((rope.rod().momentum() - expected).norm(), 1e-12 * expected.norm());
+
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& bad : {std::function<void()>([&] { rope.applyForce(nan, btVector3(1, 0, 0)); }),
+                          std::function<void()>([&] { rope.applyForce(0.5, btVector3(btScalar(nan), 0, 0)); }),
+                          std::function<void()>([&] { rope.applyImpulse(2.0, btVector3(1, 0, 0)); })}) {
+    EXPECT_THROW(bad(), InvalidArgument);
+  }
+  stepWorld(physics.world(), 1);  // nothing was queued by the refused calls
+  EXPECT_LT((rope.rod().momentum() - expected).norm(), 1e-12 * expected.norm());
+}
+
 }  // namespace
 }  // namespace rope::bullet

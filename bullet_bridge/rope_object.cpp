@@ -240,7 +240,7 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
 }
 
 void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
-  userLoads_ = rod_.takeLoads();  // queued on rod() or by applyForce since the last substep
+  rod_.takeLoads(userLoads_);  // queued on rod() or by applyForce since the last substep
   contacts_.clear();
   pending_.clear();
   lastStep_ = RopeStepRecord();

@@ -413,13 +413,14 @@ void Rod::queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffn
   trialValid_ = false;
 }
 
-Rod::LoadQueue Rod::takeLoads() {
-  LoadQueue queue;
+void Rod::takeLoads(LoadQueue& queue) {
+  queue.loads.clear();
+  queue.springs.clear();
+  queue.marked.clear();
   queue.loads.swap(loads_);
   queue.springs.swap(springs_);
   queue.marked.swap(markedInteractions_);
   trialValid_ = false;
-  return queue;
 }
 
 void Rod::addLoads(const LoadQueue& queue) {

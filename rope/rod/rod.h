@@ -225,7 +225,8 @@ class Rod {
 
  public:
   // The queued loads as a value, for a bridge that solves one step several times with loads of its
-  // own: takeLoads() empties the rod's queue into it, addLoads() queues its loads again (they were
+  // own: takeLoads() moves the rod's queue into `queue` (whose old contents are dropped; the buffers
+  // are exchanged, so a steady state allocates nothing), addLoads() queues them again (they were
   // validated when they were first queued).
   class LoadQueue {
    public:
@@ -237,7 +238,7 @@ class Rod {
     std::vector<Spring> springs;
     std::vector<double> marked;
   };
-  LoadQueue takeLoads();
+  void takeLoads(LoadQueue& queue);
   void addLoads(const LoadQueue& queue);
 
  private:

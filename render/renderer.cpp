@@ -338,6 +338,37 @@ struct Renderer::Impl {
   void releaseUnused();
   void render(const Scene& scene, const Camera& camera, Image& out);
 
+  // What every pass of one frame needs.
+  struct FrameView {
+    Eigen::Matrix4d viewProjection;
+    Vec3 toLight;             // unit, towards the light
+    BoundingBox sceneBounds;  // of the scene's items (ground excluded); may be empty
+    BoundingBox bounds;       // sceneBounds, or the origin for an empty scene
+    double radius = 0.1;      // of bounds, at least 0.1 m
+    double fogStart = 0.0, fogEnd = 0.0;  // m from the eye
+  };
+  struct ShadowMap {
+    bool enabled = false;
+    Eigen::Matrix4d lightViewProjection = Eigen::Matrix4d::Identity();
+    float texel = 0.0f;         // one texel in shadow-map coordinates
+    float normalOffset = 0.0f;  // m, the lookup's offset along the normal (against shadow acne)
+  };
+  // The steps of render(), in order.
+  FrameView frameView(const Scene& scene, const Camera& camera) const;
+  std::vector<Draw> drawList(const Scene& scene, const FrameView& view);
+  ShadowMap renderShadowMap(const std::vector<Draw>& draws, const FrameView& view);
+  void beginMainPass();
+  void drawSurfaces(const std::vector<Draw>& draws, const FrameView& view, const ShadowMap& shadow,
+                    const Camera& camera);
+  void drawGrounds(const std::vector<Draw>& draws, const FrameView& view, const ShadowMap& shadow,
+                   const Camera& camera);
+  void drawSky(const Camera& camera, const FrameView& view);
+  void drawOverlays(const std::vector<Draw>& draws);
+  void readBack(Image& out);
+  void useWithFrameUniforms(const Program& program, const FrameView& view, const ShadowMap& shadow,
+                            const Camera& camera) const;
+  void drawWithSurfaceProgram(const std::vector<Draw>& draws, Material material) const;
+
   static void requireComplete(const char* what) {
     const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
@@ -511,22 +542,88 @@ double horizonHeight(const Camera& camera, const Eigen::Matrix4d& viewProjection
   return lowest;
 }
 
+// Height where the shadows land: the lowest ground plane under the scene's centre, or the scene's
+// own bottom.
+double shadowReceiverHeight(const std::vector<Draw>& draws, const BoundingBox& bounds) {
+  double receiverHeight = bounds.min.y();
+  for (const Draw& draw : draws) {
+    if (draw.material != Material::Ground || std::abs(draw.groundNormal.y()) < 0.1) continue;
+    const Vec3& onPlane = draw.groundPoint;
+    const Vec3 offset = bounds.center() - onPlane;
+    const double height = onPlane.y() - (draw.groundNormal.x() * offset.x() + draw.groundNormal.z() * offset.z()) /
+                                            draw.groundNormal.y();
+    receiverHeight = std::min(receiverHeight, height);
+  }
+  return receiverHeight;
+}
+
+struct LightFrustum {
+  Eigen::Matrix4d lightViewProjection;
+  double extent;  // m, the larger side of the frustum's cross-section
+};
+
+// The orthographic light frustum that holds the scene's bounds and their shadows on the plane at
+// receiverHeight, padded a little.
+LightFrustum fitLightFrustum(const BoundingBox& bounds, double radius, const Vec3& toLight, double receiverHeight) {
+  std::vector<Vec3> points;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 corner((i & 1) ? bounds.max.x() : bounds.min.x(), (i & 2) ? bounds.max.y() : bounds.min.y(),
+                      (i & 4) ? bounds.max.z() : bounds.min.z());
+    points.push_back(corner);
+    if (toLight.y() > 0.05) points.push_back(corner - toLight * ((corner.y() - receiverHeight) / toLight.y()));
+  }
+  const Vec3 center = bounds.center();
+  const Vec3 up = std::abs(toLight.y()) < 0.99 ? Vec3::UnitY() : Vec3::UnitX();
+  const Eigen::Matrix4d lightView = lookAt(center + toLight * (4.0 * radius), center, up);
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const Vec3& p : points) {
+    const Vec3 q = (lightView * p.homogeneous()).head<3>();
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  const double pad = 0.02 * radius + 1e-3;
+  lo -= Vec3::Constant(pad);
+  hi += Vec3::Constant(pad);
+  return {orthographic(lo.x(), hi.x(), lo.y(), hi.y(), -hi.z() - pad, -lo.z() + pad) * lightView,
+          std::max(hi.x() - lo.x(), hi.y() - lo.y())};
+}
+
 }  // namespace
 
+// One frame, in the order the GPU needs it: the per-frame quantities (frameView), the draw list
+// (uploading meshes seen for the first time), the shadow map, the main pass (surfaces, ground, sky,
+// overlays) and the read-back.
 void Renderer::Impl::render(const Scene& scene, const Camera& camera, Image& out) {
-  const int w = settings.width, h = settings.height;
-  const double aspect = static_cast<double>(w) / h;
-  const Eigen::Matrix4d viewProjection = camera.projectionMatrix(aspect) * camera.viewMatrix();
-  const Vec3 toLight = -settings.lightDirection.normalized();
-  const BoundingBox sceneBounds = scene.bounds();
-  BoundingBox bounds = sceneBounds;
-  if (bounds.empty()) bounds.extend(Vec3::Zero());
-  const double radius = std::max(bounds.radius(), 0.1);
-  // Haze from a few scene sizes away, complete well before the ground's edge.
-  const double viewDistance = std::max((camera.target - camera.eye).norm(), radius);
-  const double fogStart = 2.0 * viewDistance, fogEnd = 9.0 * viewDistance;
+  const FrameView view = frameView(scene, camera);
+  const std::vector<Draw> draws = drawList(scene, view);
+  const ShadowMap shadow = renderShadowMap(draws, view);
+  beginMainPass();
+  drawSurfaces(draws, view, shadow, camera);
+  // Ground after the objects standing on it: the depth test then skips its hidden pixels.
+  drawGrounds(draws, view, shadow, camera);
+  drawSky(camera, view);
+  drawOverlays(draws);
+  glBindVertexArray(0);
+  readBack(out);
+}
 
-  // Draw list (uploads meshes seen for the first time).
+Renderer::Impl::FrameView Renderer::Impl::frameView(const Scene& scene, const Camera& camera) const {
+  FrameView view;
+  const double aspect = static_cast<double>(settings.width) / settings.height;
+  view.viewProjection = camera.projectionMatrix(aspect) * camera.viewMatrix();
+  view.toLight = -settings.lightDirection.normalized();
+  view.sceneBounds = scene.bounds();
+  view.bounds = view.sceneBounds;
+  if (view.bounds.empty()) view.bounds.extend(Vec3::Zero());
+  view.radius = std::max(view.bounds.radius(), 0.1);
+  // Haze from a few scene sizes away, complete well before the ground's edge.
+  const double viewDistance = std::max((camera.target - camera.eye).norm(), view.radius);
+  view.fogStart = 2.0 * viewDistance;
+  view.fogEnd = 9.0 * viewDistance;
+  return view;
+}
+
+std::vector<Draw> Renderer::Impl::drawList(const Scene& scene, const FrameView& view) {
   std::vector<Draw> draws;
   draws.reserve(scene.items.size() + 1);
   for (const DrawItem& item : scene.items) {
@@ -540,79 +637,55 @@ void Renderer::Impl::render(const Scene& scene, const Camera& camera, Image& out
                          item.transform * Vec3(p[0], p[1], p[2])});
   }
   if (settings.autoGround && !scene.hasGround()) {
-    const double half = 1.5 * fogEnd + radius;
+    const BoundingBox& bounds = view.bounds;
+    const double half = 1.5 * view.fogEnd + view.radius;
     Eigen::Affine3d placement = Eigen::Affine3d::Identity();
     placement.translate(Vec3(bounds.center().x(), std::min(0.0, bounds.min.y()), bounds.center().z()));
     placement.scale(Vec3(half, 1.0, half));
     draws.push_back(Draw{&upload(groundQuad), placement.matrix().cast<float>(), Eigen::Matrix3f::Identity(),
                          Rgb(0.80f, 0.80f, 0.78f), Material::Ground, Vec3::UnitY(), placement.translation()});
   }
+  return draws;
+}
 
-  // ---- Shadow pass: an orthographic light frustum fitted to the casters and to where their
-  // shadows fall on the ground below them.
-  Eigen::Matrix4d lightViewProjection = Eigen::Matrix4d::Identity();
-  float shadowTexel = 0.0f, normalOffset = 0.0f;
-  const bool shadows = settings.shadows && !sceneBounds.empty();
-  if (shadows) {
-    // Shadows land on the lowest ground (its height under the scene's centre) or on the scene itself.
-    double receiverHeight = bounds.min.y();
-    for (const Draw& draw : draws) {
-      if (draw.material != Material::Ground || std::abs(draw.groundNormal.y()) < 0.1) continue;
-      const Vec3& onPlane = draw.groundPoint;
-      const Vec3 offset = bounds.center() - onPlane;
-      const double height = onPlane.y() - (draw.groundNormal.x() * offset.x() + draw.groundNormal.z() * offset.z()) /
-                                              draw.groundNormal.y();
-      receiverHeight = std::min(receiverHeight, height);
-    }
-    std::vector<Vec3> points;
-    for (int i = 0; i < 8; ++i) {
-      const Vec3 corner((i & 1) ? bounds.max.x() : bounds.min.x(), (i & 2) ? bounds.max.y() : bounds.min.y(),
-                        (i & 4) ? bounds.max.z() : bounds.min.z());
-      points.push_back(corner);
-      if (toLight.y() > 0.05) points.push_back(corner - toLight * ((corner.y() - receiverHeight) / toLight.y()));
-    }
-    const Vec3 center = bounds.center();
-    const Vec3 up = std::abs(toLight.y()) < 0.99 ? Vec3::UnitY() : Vec3::UnitX();
-    const Eigen::Matrix4d lightView = lookAt(center + toLight * (4.0 * radius), center, up);
-    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-    for (const Vec3& p : points) {
-      const Vec3 q = (lightView * p.homogeneous()).head<3>();
-      lo = lo.cwiseMin(q);
-      hi = hi.cwiseMax(q);
-    }
-    const double pad = 0.02 * radius + 1e-3;
-    lo -= Vec3::Constant(pad);
-    hi += Vec3::Constant(pad);
-    lightViewProjection = orthographic(lo.x(), hi.x(), lo.y(), hi.y(), -hi.z() - pad, -lo.z() + pad) * lightView;
-    const double texelWorld = std::max(hi.x() - lo.x(), hi.y() - lo.y()) / settings.shadowMapSize;
-    shadowTexel = 1.0f / static_cast<float>(settings.shadowMapSize);
-    normalOffset = static_cast<float>(1.5 * texelWorld);
+// An orthographic light frustum fitted to the casters and to where their shadows fall on the ground
+// below them; no shadows for an empty scene or with settings.shadows off.
+Renderer::Impl::ShadowMap Renderer::Impl::renderShadowMap(const std::vector<Draw>& draws, const FrameView& view) {
+  ShadowMap shadow;
+  shadow.enabled = settings.shadows && !view.sceneBounds.empty();
+  if (!shadow.enabled) return shadow;
+  const LightFrustum frustum =
+      fitLightFrustum(view.bounds, view.radius, view.toLight, shadowReceiverHeight(draws, view.bounds));
+  shadow.lightViewProjection = frustum.lightViewProjection;
+  const double texelWorld = frustum.extent / settings.shadowMapSize;
+  shadow.texel = 1.0f / static_cast<float>(settings.shadowMapSize);
+  shadow.normalOffset = static_cast<float>(1.5 * texelWorld);
 
-    glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer);
-    glViewport(0, 0, settings.shadowMapSize, settings.shadowMapSize);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1.5f, 2.0f);
-    glUseProgram(depth.id);
-    const Eigen::Matrix4f lvp = lightViewProjection.cast<float>();
-    glUniformMatrix4fv(depth.at("uLightViewProjection"), 1, GL_FALSE, lvp.data());
-    const GLint model = depth.at("uModel");
-    for (const Draw& draw : draws) {
-      if (draw.material != Material::Surface) continue;
-      glUniformMatrix4fv(model, 1, GL_FALSE, draw.model.data());
-      glBindVertexArray(draw.gpu->vao);
-      glDrawElements(GL_TRIANGLES, draw.gpu->indexCount, GL_UNSIGNED_INT, nullptr);
-    }
-    glDisable(GL_POLYGON_OFFSET_FILL);
+  glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer);
+  glViewport(0, 0, settings.shadowMapSize, settings.shadowMapSize);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.5f, 2.0f);
+  glUseProgram(depth.id);
+  const Eigen::Matrix4f lvp = shadow.lightViewProjection.cast<float>();
+  glUniformMatrix4fv(depth.at("uLightViewProjection"), 1, GL_FALSE, lvp.data());
+  const GLint model = depth.at("uModel");
+  for (const Draw& draw : draws) {
+    if (draw.material != Material::Surface) continue;
+    glUniformMatrix4fv(model, 1, GL_FALSE, draw.model.data());
+    glBindVertexArray(draw.gpu->vao);
+    glDrawElements(GL_TRIANGLES, draw.gpu->indexCount, GL_UNSIGNED_INT, nullptr);
   }
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  return shadow;
+}
 
-  // ---- Main pass.
-  const Eigen::Vector3f hazeColour = linear(settings.horizonColour);
+void Renderer::Impl::beginMainPass() {
   glBindFramebuffer(GL_FRAMEBUFFER, settings.samples > 1 ? msaaFramebuffer : frameFramebuffer);
-  glViewport(0, 0, w, h);
+  glViewport(0, 0, settings.width, settings.height);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_TRUE);
@@ -623,47 +696,61 @@ void Renderer::Impl::render(const Scene& scene, const Camera& camera, Image& out
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, shadowTexture);
-  const Eigen::Matrix4f vp = viewProjection.cast<float>();
-  const Eigen::Matrix4f lvp = lightViewProjection.cast<float>();
-  const Eigen::Vector3f toLightF = toLight.cast<float>();
-  const Eigen::Vector3f eye = camera.eye.cast<float>();
-  auto setCommon = [&](const Program& program) {
-    glUseProgram(program.id);
-    glUniformMatrix4fv(program.at("uViewProjection"), 1, GL_FALSE, vp.data());
-    glUniformMatrix4fv(program.at("uLightViewProjection"), 1, GL_FALSE, lvp.data());
-    glUniform1i(program.at("uShadowMap"), 0);
-    glUniform1i(program.at("uShadows"), shadows ? 1 : 0);
-    glUniform1f(program.at("uShadowTexel"), shadowTexel);
-    glUniform3fv(program.at("uToLight"), 1, toLightF.data());
-    glUniform3fv(program.at("uEye"), 1, eye.data());
-    glUniform3fv(program.at("uHazeColour"), 1, hazeColour.data());
-    glUniform1f(program.at("uFogStart"), static_cast<float>(fogStart));
-    glUniform1f(program.at("uFogEnd"), static_cast<float>(fogEnd));
-    glUniform1f(program.at("uAlpha"), 1.0f);
-  };
+}
 
-  setCommon(surface);
-  glUniform1f(surface.at("uNormalOffset"), normalOffset);
-  glUniform1i(surface.at("uOverlay"), 0);
-  const GLint surfaceModel = surface.at("uModel"), surfaceNormal = surface.at("uNormalMatrix"),
-              surfaceColour = surface.at("uColour");
-  auto drawSurface = [&](const Draw& draw) {
-    glUniformMatrix4fv(surfaceModel, 1, GL_FALSE, draw.model.data());
+// Makes program current with the uniforms the surface and ground shaders share.
+void Renderer::Impl::useWithFrameUniforms(const Program& program, const FrameView& view, const ShadowMap& shadow,
+                                          const Camera& camera) const {
+  const Eigen::Matrix4f vp = view.viewProjection.cast<float>();
+  const Eigen::Matrix4f lvp = shadow.lightViewProjection.cast<float>();
+  const Eigen::Vector3f toLight = view.toLight.cast<float>();
+  const Eigen::Vector3f eye = camera.eye.cast<float>();
+  const Eigen::Vector3f hazeColour = linear(settings.horizonColour);
+  glUseProgram(program.id);
+  glUniformMatrix4fv(program.at("uViewProjection"), 1, GL_FALSE, vp.data());
+  glUniformMatrix4fv(program.at("uLightViewProjection"), 1, GL_FALSE, lvp.data());
+  glUniform1i(program.at("uShadowMap"), 0);
+  glUniform1i(program.at("uShadows"), shadow.enabled ? 1 : 0);
+  glUniform1f(program.at("uShadowTexel"), shadow.texel);
+  glUniform3fv(program.at("uToLight"), 1, toLight.data());
+  glUniform3fv(program.at("uEye"), 1, eye.data());
+  glUniform3fv(program.at("uHazeColour"), 1, hazeColour.data());
+  glUniform1f(program.at("uFogStart"), static_cast<float>(view.fogStart));
+  glUniform1f(program.at("uFogEnd"), static_cast<float>(view.fogEnd));
+  glUniform1f(program.at("uAlpha"), 1.0f);
+}
+
+// Draws the items of one material with the surface program, which must be current.
+void Renderer::Impl::drawWithSurfaceProgram(const std::vector<Draw>& draws, Material material) const {
+  const GLint model = surface.at("uModel"), normal = surface.at("uNormalMatrix"), colour = surface.at("uColour");
+  for (const Draw& draw : draws) {
+    if (draw.material != material) continue;
+    glUniformMatrix4fv(model, 1, GL_FALSE, draw.model.data());
     const Eigen::Matrix3f normalMatrix = draw.normalMatrix.inverse().transpose();
-    glUniformMatrix3fv(surfaceNormal, 1, GL_FALSE, normalMatrix.data());
-    glUniform3fv(surfaceColour, 1, draw.colour.data());
+    glUniformMatrix3fv(normal, 1, GL_FALSE, normalMatrix.data());
+    glUniform3fv(colour, 1, draw.colour.data());
     glBindVertexArray(draw.gpu->vao);
     glDrawElements(GL_TRIANGLES, draw.gpu->indexCount, GL_UNSIGNED_INT, nullptr);
-  };
-  for (const Draw& draw : draws) {
-    if (draw.material == Material::Surface) drawSurface(draw);
   }
+}
 
-  // Ground after the objects standing on it: the depth test then skips its hidden pixels.
-  setCommon(ground);
+void Renderer::Impl::drawSurfaces(const std::vector<Draw>& draws, const FrameView& view, const ShadowMap& shadow,
+                                  const Camera& camera) {
+  useWithFrameUniforms(surface, view, shadow, camera);
+  glUniform1f(surface.at("uNormalOffset"), shadow.normalOffset);
+  glUniform1i(surface.at("uOverlay"), 0);
+  drawWithSurfaceProgram(draws, Material::Surface);
+}
+
+// Everything constant over a ground plane (its lighting, its grid axes) is computed here, so the
+// shader's per-pixel work is the grid, the shadow lookup and the haze.
+void Renderer::Impl::drawGrounds(const std::vector<Draw>& draws, const FrameView& view, const ShadowMap& shadow,
+                                 const Camera& camera) {
+  useWithFrameUniforms(ground, view, shadow, camera);
   glUniform1f(ground.at("uAlpha"), 0.0f);
-  glUniform1f(ground.at("uFogStart2"), static_cast<float>(fogStart * fogStart));
-  glUniform1f(ground.at("uFogScale2"), static_cast<float>(1.0 / (fogEnd * fogEnd - fogStart * fogStart)));
+  glUniform1f(ground.at("uFogStart2"), static_cast<float>(view.fogStart * view.fogStart));
+  glUniform1f(ground.at("uFogScale2"),
+              static_cast<float>(1.0 / (view.fogEnd * view.fogEnd - view.fogStart * view.fogStart)));
   for (const Draw& draw : draws) {
     if (draw.material != Material::Ground) continue;
     const Vec3& n = draw.groundNormal;
@@ -674,7 +761,7 @@ void Renderer::Impl::render(const Scene& scene, const Camera& camera, Image& out
     const Eigen::Vector3f vCells = (n.cross(u).normalized() / settings.gridSpacing).cast<float>();
     const Eigen::Vector3f base = linear(draw.colour);
     const Vec3 ambient = kBounceAmbient + (kSkyAmbient - kBounceAmbient) * (0.5 + 0.5 * n.y());
-    const Vec3 direct = kSun * std::max(n.dot(toLight), 0.0);
+    const Vec3 direct = kSun * std::max(n.dot(view.toLight), 0.0);
     const Eigen::Vector3f unlit = base.cwiseProduct(ambient.cast<float>());
     const Eigen::Vector3f lit = base.cwiseProduct((ambient + direct).cast<float>());
     glUniform3fv(ground.at("uAxisU"), 1, uCells.data());
@@ -687,46 +774,49 @@ void Renderer::Impl::render(const Scene& scene, const Camera& camera, Image& out
     glBindVertexArray(draw.gpu->vao);
     glDrawElements(GL_TRIANGLES, draw.gpu->indexCount, GL_UNSIGNED_INT, nullptr);
   }
+}
 
-  // Sky band above the horizon, behind everything drawn so far.
-  const double horizon = horizonHeight(camera, viewProjection);
-  if (horizon < 1.0) {
-    glUseProgram(sky.id);
-    const Eigen::Vector3f zenith = linear(settings.zenithColour);
-    glUniform1f(sky.at("uHorizonY"), static_cast<float>(horizon));
-    glUniform3fv(sky.at("uHorizon"), 1, hazeColour.data());
-    glUniform3fv(sky.at("uZenith"), 1, zenith.data());
-    glDepthMask(GL_FALSE);
-    glBindVertexArray(emptyVao);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    glDepthMask(GL_TRUE);
-  }
+// Sky band above the horizon, behind everything drawn so far.
+void Renderer::Impl::drawSky(const Camera& camera, const FrameView& view) {
+  const double horizon = horizonHeight(camera, view.viewProjection);
+  if (horizon >= 1.0) return;
+  glUseProgram(sky.id);
+  const Eigen::Vector3f hazeColour = linear(settings.horizonColour);
+  const Eigen::Vector3f zenith = linear(settings.zenithColour);
+  glUniform1f(sky.at("uHorizonY"), static_cast<float>(horizon));
+  glUniform3fv(sky.at("uHorizon"), 1, hazeColour.data());
+  glUniform3fv(sky.at("uZenith"), 1, zenith.data());
+  glDepthMask(GL_FALSE);
+  glBindVertexArray(emptyVao);
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  glDepthMask(GL_TRUE);
+}
 
-  // Overlays: solid where visible, then faintly through whatever hides them (x-ray), so a control
-  // polygon inside a thick rope still shows.
-  bool hasOverlay = false;
-  for (const Draw& draw : draws) hasOverlay = hasOverlay || draw.material == Material::Overlay;
-  if (hasOverlay) {
-    glUseProgram(surface.id);
-    glUniform1i(surface.at("uOverlay"), 1);
-    for (const Draw& draw : draws) {
-      if (draw.material == Material::Overlay) drawSurface(draw);
-    }
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_FALSE);
-    glUniform1f(surface.at("uAlpha"), 0.4f);
-    for (const Draw& draw : draws) {
-      if (draw.material == Material::Overlay) drawSurface(draw);
-    }
-    glDepthMask(GL_TRUE);
-    glDepthFunc(GL_LEQUAL);
-    glDisable(GL_BLEND);
-  }
-  glBindVertexArray(0);
+// Overlays: solid where visible, then faintly through whatever hides them (x-ray), so a control
+// polygon inside a thick rope still shows. The surface program keeps the frame's uniforms from
+// drawSurfaces.
+void Renderer::Impl::drawOverlays(const std::vector<Draw>& draws) {
+  const bool hasOverlay = std::any_of(draws.begin(), draws.end(),
+                                      [](const Draw& draw) { return draw.material == Material::Overlay; });
+  if (!hasOverlay) return;
+  glUseProgram(surface.id);
+  glUniform1i(surface.at("uOverlay"), 1);
+  drawWithSurfaceProgram(draws, Material::Overlay);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_FALSE);
+  glUniform1f(surface.at("uAlpha"), 0.4f);
+  drawWithSurfaceProgram(draws, Material::Overlay);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LEQUAL);
+  glDisable(GL_BLEND);
+}
 
-  // ---- Resolve, anti-alias and read back.
+// Resolves the multisample buffer, reads the frame back, releases meshes nothing holds any more and
+// converts (and anti-aliases) the pixels into out.
+void Renderer::Impl::readBack(Image& out) {
+  const int w = settings.width, h = settings.height;
   if (settings.samples > 1) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, msaaFramebuffer);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frameFramebuffer);

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -430,132 +431,210 @@ int tryOne(char** args) {
   return 0;
 }
 
-int main(int argc, char** argv) {
+struct Options {
   bool quick = false;
   std::string out = "rope_compare";
   int repeats = 3;
+};
+
+// Reads the command line into options. Returns the exit status when the program should stop here:
+// after a --try run, or 2 for a bad argument.
+std::optional<int> parseArguments(int argc, char** argv, Options& options) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--quick") quick = true;
-    else if (arg == "--out" && i + 1 < argc) out = argv[++i];
-    else if (arg == "--repeats" && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
+    if (arg == "--quick") options.quick = true;
+    else if (arg == "--out" && i + 1 < argc) options.out = argv[++i];
+    else if (arg == "--repeats" && i + 1 < argc) options.repeats = std::max(1, std::atoi(argv[++i]));
     else if (arg == "--try" && i + 7 < argc) return tryOne(argv + i + 1);
     else {
       std::cerr << "usage: rope_compare [--quick] [--out PREFIX] [--repeats N]\n";
       return 2;
     }
   }
-  if (quick) repeats = 1;
-  const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  if (options.quick) options.repeats = 1;
+  return std::nullopt;
+}
 
-  std::vector<Entry> all;
+// Wall seconds since the program started, for the progress lines.
+class Clock {
+ public:
+  double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+// Everything the runs produced.
+struct Results {
+  std::vector<Entry> all;  // every trial, in the order of the JSON and the sweep table
   std::map<Scene, std::vector<Entry>> byScene;
-  Limits heavyLimits;
-  for (const Plan& plan : quick ? quickPlan() : fullPlan(15.0)) {
-    std::fprintf(stderr, "[%6.1f s] %s\n", elapsed(), sceneName(plan.scene));
-    byScene[plan.scene] = runPlan(plan, repeats);
+  std::vector<Entry> loadCheck;  // each engine's heavy-load setting run again at half the load
+  std::vector<int> sizes;        // rope sizes of the scaling scene
+  int softIterations = 16;       // the soft body's iterations in the scaling scene
+  double totalSeconds = 0.0;     // wall time of all the runs
+  Limits heavyLimits;            // the heavy-load plan's limits
+};
+
+// The four scenes of the plan, each engine's settings in turn; on the full run the soft body's
+// iteration count is also calibrated to the heavy load.
+void runScenePlans(const Options& options, const Clock& clock, Results& results) {
+  for (const Plan& plan : options.quick ? quickPlan() : fullPlan(15.0)) {
+    std::fprintf(stderr, "[%6.1f s] %s\n", clock.elapsed(), sceneName(plan.scene));
+    std::vector<Entry>& entries = results.byScene[plan.scene];
+    entries = runPlan(plan, options.repeats);
     if (plan.scene == Scene::kHeavyLoad) {
-      heavyLimits = plan.limits;
-      if (!quick) {
-        const std::vector<Entry> calibrated = calibrateSoftBody(byScene[plan.scene], plan.limits, repeats);
-        byScene[plan.scene].insert(byScene[plan.scene].end(), calibrated.begin(), calibrated.end());
+      results.heavyLimits = plan.limits;
+      if (!options.quick) {
+        const std::vector<Entry> calibrated = calibrateSoftBody(entries, plan.limits, options.repeats);
+        entries.insert(entries.end(), calibrated.begin(), calibrated.end());
       }
     }
-    all.insert(all.end(), byScene[plan.scene].begin(), byScene[plan.scene].end());
+    results.all.insert(results.all.end(), entries.begin(), entries.end());
   }
-  // Load check: each engine's cheapest setting within 1 % at 10 kg, run again with half the load.
-  std::vector<Entry> loadCheck;
-  {
-    Limits half = heavyLimits;
-    half.loadMass = 0.5 * HeavyLoadSpec{}.crane.boxMass;
-    for (Engine e : kEngines)
-      if (const Entry* best = cheapestWithin(byScene[Scene::kHeavyLoad], e, "strain_error")) {
-        loadCheck.push_back(measure(e, Scene::kHeavyLoad, best->setting, half, 1));
-        std::fprintf(stderr, "[%6.1f s] load check %s %s\n", elapsed(), engineName(e), best->setting.label().c_str());
-      }
-  }
-  // The soft body's scaling runs use the iterations of its cheapest catenary setting within 1 %.
-  const Entry* softCatenary = cheapestWithin(byScene[Scene::kCatenary], Engine::kSoftBody, "sag_error");
-  const int softIterations = softCatenary ? softCatenary->setting.iterations : 16;
-  std::fprintf(stderr, "[%6.1f s] scaling\n", elapsed());
-  const std::vector<int> sizes = quick ? std::vector<int>{16, 64} : std::vector<int>{16, 64, 256, 1024};
-  byScene[Scene::kScaling] = runScaling(sizes, repeats, softIterations, quick ? 2.0 : 8.0);
-  all.insert(all.end(), byScene[Scene::kScaling].begin(), byScene[Scene::kScaling].end());
-  for (Entry& e : loadCheck) e.trial.metrics["load_mass_kg"] = 0.5 * HeavyLoadSpec{}.crane.boxMass;
-  all.insert(all.end(), loadCheck.begin(), loadCheck.end());
-  const double total = elapsed();
+}
 
-  // ---- summary table ----
-  const DrapeSpec thinBar = DrapeSpec::thinBar();
-  const DrapeSpec box = DrapeSpec::box();
-  std::map<std::string, std::string> summary;
-  std::ostringstream md;
-  md << "| scene (figure) | SplineRope | Bullet soft body (`CreateRope`) | MuJoCo " << mj_versionString()
-     << " chain (`composite rope`) |\n|---|---|---|---|\n";
-  auto row = [&](const std::string& key, const std::string& title, const std::string& a, const std::string& b,
-                 const std::string& c) {
-    md << "| " << title << " | " << a << " | " << b << " | " << c << " |\n";
-    summary[key + ".splinerope"] = a;
-    summary[key + ".bullet_softbody"] = b;
-    summary[key + ".mujoco_chain"] = c;
-  };
-  const auto& cat = byScene[Scene::kCatenary];
-  const auto& heavy = byScene[Scene::kHeavyLoad];
-  row("catenary", "(1) catenary: cheapest setting with \\|sag error\\| ≤ 1 %: error, wall ms per simulated s",
-      accuracyCell(cat, Engine::kSplineRope, "sag_error"), accuracyCell(cat, Engine::kSoftBody, "sag_error"),
-      accuracyCell(cat, Engine::kMuJoCo, "sag_error"));
-  row("catenary_ratio", "(1) cost at equal accuracy, peer ÷ SplineRope", "1×", ratioCell(cat, Engine::kSoftBody, "sag_error"),
-      ratioCell(cat, Engine::kMuJoCo, "sag_error"));
-  row("heavy_load", "(2) heavy load: cheapest setting with \\|strain error\\| ≤ 1 % vs W/(EA): error, wall ms per simulated s",
-      accuracyCell(heavy, Engine::kSplineRope, "strain_error"), accuracyCell(heavy, Engine::kSoftBody, "strain_error"),
-      accuracyCell(heavy, Engine::kMuJoCo, "strain_error"));
-  row("heavy_load_ratio", "(2) cost at equal accuracy, peer ÷ SplineRope", "1×",
-      ratioCell(heavy, Engine::kSoftBody, "strain_error"), ratioCell(heavy, Engine::kMuJoCo, "strain_error"));
+// Load check: each engine's cheapest setting within 1 % at 10 kg, run again with half the load.
+void runLoadCheck(const Clock& clock, Results& results) {
+  Limits half = results.heavyLimits;
+  half.loadMass = 0.5 * HeavyLoadSpec{}.crane.boxMass;
+  for (Engine e : kEngines)
+    if (const Entry* best = cheapestWithin(results.byScene[Scene::kHeavyLoad], e, "strain_error")) {
+      results.loadCheck.push_back(measure(e, Scene::kHeavyLoad, best->setting, half, 1));
+      std::fprintf(stderr, "[%6.1f s] load check %s %s\n", clock.elapsed(), engineName(e), best->setting.label().c_str());
+    }
+}
+
+// The hanging rope at growing sizes; the soft body runs with the iterations of its cheapest catenary
+// setting within 1 %.
+void runScalingScene(const Options& options, const Clock& clock, Results& results) {
+  const Entry* softCatenary = cheapestWithin(results.byScene[Scene::kCatenary], Engine::kSoftBody, "sag_error");
+  results.softIterations = softCatenary ? softCatenary->setting.iterations : 16;
+  std::fprintf(stderr, "[%6.1f s] scaling\n", clock.elapsed());
+  results.sizes = options.quick ? std::vector<int>{16, 64} : std::vector<int>{16, 64, 256, 1024};
+  std::vector<Entry>& scaling = results.byScene[Scene::kScaling];
+  scaling = runScaling(results.sizes, options.repeats, results.softIterations, options.quick ? 2.0 : 8.0);
+  results.all.insert(results.all.end(), scaling.begin(), scaling.end());
+}
+
+Results runComparison(const Options& options) {
+  const Clock clock;
+  Results results;
+  runScenePlans(options, clock, results);
+  runLoadCheck(clock, results);
+  runScalingScene(options, clock, results);
+  for (Entry& e : results.loadCheck) e.trial.metrics["load_mass_kg"] = 0.5 * HeavyLoadSpec{}.crane.boxMass;
+  results.all.insert(results.all.end(), results.loadCheck.begin(), results.loadCheck.end());
+  results.totalSeconds = clock.elapsed();
+  return results;
+}
+
+// The README's comparison table (markdown) and the same cells by key for the JSON summary.
+class SummaryTable {
+ public:
+  SummaryTable() {
+    markdown_ << "| scene (figure) | SplineRope | Bullet soft body (`CreateRope`) | MuJoCo " << mj_versionString()
+              << " chain (`composite rope`) |\n|---|---|---|---|\n";
+  }
+  void row(const std::string& key, const std::string& title, const std::string& a, const std::string& b,
+           const std::string& c) {
+    markdown_ << "| " << title << " | " << a << " | " << b << " | " << c << " |\n";
+    cells_[key + ".splinerope"] = a;
+    cells_[key + ".bullet_softbody"] = b;
+    cells_[key + ".mujoco_chain"] = c;
+  }
+  std::string markdown() const { return markdown_.str(); }
+  const std::map<std::string, std::string>& cells() const { return cells_; }
+
+ private:
+  std::ostringstream markdown_;
+  std::map<std::string, std::string> cells_;
+};
+
+// (1) and (2): the cheapest setting within 1 % and its cost against SplineRope's, and (2)'s setting
+// at half the load.
+void addAccuracyRows(SummaryTable& table, const Results& results) {
+  const auto& cat = results.byScene.at(Scene::kCatenary);
+  const auto& heavy = results.byScene.at(Scene::kHeavyLoad);
+  table.row("catenary", "(1) catenary: cheapest setting with \\|sag error\\| ≤ 1 %: error, wall ms per simulated s",
+            accuracyCell(cat, Engine::kSplineRope, "sag_error"), accuracyCell(cat, Engine::kSoftBody, "sag_error"),
+            accuracyCell(cat, Engine::kMuJoCo, "sag_error"));
+  table.row("catenary_ratio", "(1) cost at equal accuracy, peer ÷ SplineRope", "1×",
+            ratioCell(cat, Engine::kSoftBody, "sag_error"), ratioCell(cat, Engine::kMuJoCo, "sag_error"));
+  table.row("heavy_load",
+            "(2) heavy load: cheapest setting with \\|strain error\\| ≤ 1 % vs W/(EA): error, wall ms per simulated s",
+            accuracyCell(heavy, Engine::kSplineRope, "strain_error"),
+            accuracyCell(heavy, Engine::kSoftBody, "strain_error"), accuracyCell(heavy, Engine::kMuJoCo, "strain_error"));
+  table.row("heavy_load_ratio", "(2) cost at equal accuracy, peer ÷ SplineRope", "1×",
+            ratioCell(heavy, Engine::kSoftBody, "strain_error"), ratioCell(heavy, Engine::kMuJoCo, "strain_error"));
   std::map<Engine, std::string> checkCells;
-  for (const Entry& e : loadCheck)
+  for (const Entry& e : results.loadCheck)
     checkCells[e.engine] = e.setting.label() + ": " + (e.trial.ok() ? percent(metric(e, "strain_error")) : e.trial.status);
   for (Engine e : kEngines)
     if (checkCells[e].empty()) checkCells[e] = "no setting to check";
-  row("heavy_load_5kg", "(2) that setting with a 5 kg load instead: strain error vs W/(EA)", checkCells[Engine::kSplineRope],
-      checkCells[Engine::kSoftBody], checkCells[Engine::kMuJoCo]);
-  const auto& bar = byScene[Scene::kThinBar];
-  row("thin_bar", "(3) thin bar (2 mm), dropped from 1 m: held or fell through", thinBarCell(bar, Engine::kSplineRope, thinBar.drape.obstacleTop),
-      thinBarCell(bar, Engine::kSoftBody, thinBar.drape.obstacleTop), thinBarCell(bar, Engine::kMuJoCo, thinBar.drape.obstacleTop));
-  const auto& drape = byScene[Scene::kDrape];
-  row("drape", "(4) drape on a box: max / resting (last 0.5 s) penetration", drapeCell(drape, Engine::kSplineRope, box.drape.rod.radius),
-      drapeCell(drape, Engine::kSoftBody, box.drape.rod.radius), drapeCell(drape, Engine::kMuJoCo, box.drape.rod.radius));
+  table.row("heavy_load_5kg", "(2) that setting with a 5 kg load instead: strain error vs W/(EA)",
+            checkCells[Engine::kSplineRope], checkCells[Engine::kSoftBody], checkCells[Engine::kMuJoCo]);
+}
+
+// (3) and (4): the thin bar held or not, and the penetration into a box.
+void addContactRows(SummaryTable& table, const Results& results) {
+  const double barTop = DrapeSpec::thinBar().drape.obstacleTop;
+  const double radius = DrapeSpec::box().drape.rod.radius;
+  const auto& bar = results.byScene.at(Scene::kThinBar);
+  table.row("thin_bar", "(3) thin bar (2 mm), dropped from 1 m: held or fell through",
+            thinBarCell(bar, Engine::kSplineRope, barTop), thinBarCell(bar, Engine::kSoftBody, barTop),
+            thinBarCell(bar, Engine::kMuJoCo, barTop));
+  const auto& drape = results.byScene.at(Scene::kDrape);
+  table.row("drape", "(4) drape on a box: max / resting (last 0.5 s) penetration",
+            drapeCell(drape, Engine::kSplineRope, radius), drapeCell(drape, Engine::kSoftBody, radius),
+            drapeCell(drape, Engine::kMuJoCo, radius));
+}
+
+// (5): time per step of the hanging rope at each size, and the peers' ratios to SplineRope's.
+void addScalingRows(SummaryTable& table, const Results& results) {
+  const auto& scaling = results.byScene.at(Scene::kScaling);
   std::map<Engine, std::string> scalingCells;
-  for (const Entry& e : byScene[Scene::kScaling]) {
+  for (const Entry& e : scaling) {
     std::string& cell = scalingCells[e.engine];
     // A run that failed still timed its steps until then: show the time and how it ended.
     cell += (cell.empty() ? "" : " / ") + fmt(e.medianStepUs() < 100 ? "%.1f" : "%.0f", e.medianStepUs()) +
             (e.trial.ok() ? "" : " (" + e.trial.status + " at step " + std::to_string(e.trial.steps) + ")");
   }
   std::string sizeText;
-  for (int n : sizes) sizeText += (sizeText.empty() ? "" : " / ") + std::to_string(n);
-  row("scaling", "(5) hanging rope at " + sizeText + " nodes: µs per step" +
-                     (softIterations != 1 ? " (soft body at " + std::to_string(softIterations) + " iterations)" : ""),
-      scalingCells[Engine::kSplineRope], scalingCells[Engine::kSoftBody], scalingCells[Engine::kMuJoCo]);
-  // Per-size ratios against SplineRope.
+  for (int n : results.sizes) sizeText += (sizeText.empty() ? "" : " / ") + std::to_string(n);
+  table.row("scaling",
+            "(5) hanging rope at " + sizeText + " nodes: µs per step" +
+                (results.softIterations != 1
+                     ? " (soft body at " + std::to_string(results.softIterations) + " iterations)"
+                     : ""),
+            scalingCells[Engine::kSplineRope], scalingCells[Engine::kSoftBody], scalingCells[Engine::kMuJoCo]);
   std::string softRatio, mujocoRatio;
-  for (size_t i = 0; i + 2 < byScene[Scene::kScaling].size(); i += 3) {
-    const auto& s = byScene[Scene::kScaling];
-    softRatio += (softRatio.empty() ? "" : " / ") + fmt("%.1f×", s[i + 1].medianStepUs() / s[i].medianStepUs());
-    mujocoRatio += (mujocoRatio.empty() ? "" : " / ") + fmt("%.0f×", s[i + 2].medianStepUs() / s[i].medianStepUs());
+  for (size_t i = 0; i + 2 < scaling.size(); i += 3) {
+    softRatio += (softRatio.empty() ? "" : " / ") + fmt("%.1f×", scaling[i + 1].medianStepUs() / scaling[i].medianStepUs());
+    mujocoRatio +=
+        (mujocoRatio.empty() ? "" : " / ") + fmt("%.0f×", scaling[i + 2].medianStepUs() / scaling[i].medianStepUs());
   }
-  row("scaling_ratio", "(5) time per step, peer ÷ SplineRope", "1×", softRatio, mujocoRatio);
+  table.row("scaling_ratio", "(5) time per step, peer ÷ SplineRope", "1×", softRatio, mujocoRatio);
+}
 
-  // ---- full sweep ----
+SummaryTable summaryTable(const Results& results) {
+  SummaryTable table;
+  addAccuracyRows(table, results);
+  addContactRows(table, results);
+  addScalingRows(table, results);
+  return table;
+}
+
+// Every trial: setting, status, the scene's accuracy figure and its cost.
+std::string sweepTable(const Results& results) {
+  const double barTop = DrapeSpec::thinBar().drape.obstacleTop;
   std::ostringstream sweep;
   sweep << "| scene | engine | setting | dof | status | accuracy | wall ms per simulated s (median) | µs per step |\n"
            "|---|---|---|---|---|---|---|---|\n";
-  for (const Entry& e : all) {
+  for (const Entry& e : results.all) {
     std::string accuracy;
     if (e.scene == Scene::kCatenary) accuracy = "sag error " + percent(metric(e, "sag_error"));
     else if (e.scene == Scene::kHeavyLoad) accuracy = "strain error " + percent(metric(e, "strain_error"));
-    else if (e.scene == Scene::kThinBar)
-      accuracy = metric(e, "highest_m") > thinBar.drape.obstacleTop - 0.1 ? "held" : "fell through";
+    else if (e.scene == Scene::kThinBar) accuracy = metric(e, "highest_m") > barTop - 0.1 ? "held" : "fell through";
     else if (e.scene == Scene::kDrape)
       accuracy = "penetration max " + fmt("%.2f", 1e3 * metric(e, "max_penetration_m")) + " mm, resting " +
                  fmt("%.2f", 1e3 * metric(e, "resting_penetration_m")) + " mm";
@@ -564,36 +643,54 @@ int main(int argc, char** argv) {
           << " | " << e.trial.status << " | " << accuracy << " | " << ms(e.medianCost()) << " | "
           << fmt("%.1f", e.medianStepUs()) << " |\n";
   }
+  return sweep.str();
+}
 
+// PREFIX.md, PREFIX.json and PREFIX.dat, and the summary on stdout. False if PREFIX.md cannot be
+// written (then nothing else is).
+bool writeOutputs(const Options& options, const Results& results, const SummaryTable& summary) {
   char header[256];
-  std::snprintf(header, sizeof header, "rope_compare%s: %d repeat(s), %.0f s wall in total\n\n", quick ? " --quick" : "",
-                repeats, total);
+  std::snprintf(header, sizeof header, "rope_compare%s: %d repeat(s), %.0f s wall in total\n\n",
+                options.quick ? " --quick" : "", options.repeats, results.totalSeconds);
+  const std::string& out = options.out;
   {
     std::ofstream table(out + ".md");
-    table << header << md.str() << "\nEvery setting:\n\n" << sweep.str();
+    table << header << summary.markdown() << "\nEvery setting:\n\n" << sweepTable(results);
     if (!table) {
       std::fprintf(stderr, "rope_compare: cannot write %s.md (does the directory exist?)\n", out.c_str());
-      return 1;
+      return false;
     }
   }
-  writeJson(out + ".json", all, repeats, total, quick, summary);
-  writePlotData(out + ".dat", all);
-  std::cout << header << md.str();
+  writeJson(out + ".json", results.all, options.repeats, results.totalSeconds, options.quick, summary.cells());
+  writePlotData(out + ".dat", results.all);
+  std::cout << header << summary.markdown();
   std::fprintf(stderr, "wrote %s.json, %s.md, %s.dat\n", out.c_str(), out.c_str(), out.c_str());
+  return true;
+}
 
-  // The smoke check: SplineRope must run every scene and hold the thin bar.
+// The smoke check: SplineRope must run every scene and hold the thin bar.
+bool smokeCheckPasses(const Results& results) {
+  const double barTop = DrapeSpec::thinBar().drape.obstacleTop;
   bool ok = true;
-  for (const Entry& e : all)
+  for (const Entry& e : results.all)
     if (e.engine == Engine::kSplineRope && !e.trial.ok()) {
       std::fprintf(stderr, "FAIL: SplineRope %s: %s\n", sceneName(e.scene), e.trial.status.c_str());
       ok = false;
     }
-  for (const Entry& e : bar)
-    if (e.engine == Engine::kSplineRope && !(metric(e, "highest_m") > thinBar.drape.obstacleTop - 0.1)) {
+  for (const Entry& e : results.byScene.at(Scene::kThinBar))
+    if (e.engine == Engine::kSplineRope && !(metric(e, "highest_m") > barTop - 0.1)) {
       std::fprintf(stderr, "FAIL: SplineRope fell through the thin bar\n");
       ok = false;
     }
-  return ok ? 0 : 1;
+  return ok;
+}
+
+int main(int argc, char** argv) {
+  Options options;
+  if (const std::optional<int> exitStatus = parseArguments(argc, argv, options)) return *exitStatus;
+  const Results results = runComparison(options);
+  if (!writeOutputs(options, results, summaryTable(results))) return 1;
+  return smokeCheckPasses(results) ? 0 : 1;
 }
 
 }  // namespace

@@ -4,6 +4,10 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <map>
+#include <string>
+
 #include "demos/scenes/crane_scene.h"
 #include "demos/scenes/drape_scene.h"
 #include "demos/scenes/hang_scene.h"
@@ -46,6 +50,31 @@ struct DrapeSpec {
   Eigen::Vector3d obstacleHalfExtents() const;
   // How far a sphere of the rope's radius at `point` reaches into the obstacle, m (0 if clear).
   double penetration(const Eigen::Vector3d& point) const;
+};
+
+// What every engine's drape run measures of its rope: the deepest penetration into the obstacle
+// over the whole run and over its last restingWindow, each state taken at its deepest sample point.
+class DrapePenetration {
+ public:
+  DrapePenetration(const DrapeSpec& spec, double duration) : spec_(spec), duration_(duration) {}
+  // The state at time t (s); forEachPoint(visit) calls visit with each sample point of the rope (m).
+  template <class ForEachPoint>
+  void sample(double t, ForEachPoint&& forEachPoint) {
+    double deepest = 0.0;
+    forEachPoint([&](const Eigen::Vector3d& point) { deepest = std::max(deepest, spec_.penetration(point)); });
+    max_ = std::max(max_, deepest);
+    if (t > duration_ - spec_.restingWindow) resting_ = std::max(resting_, deepest);
+  }
+  // max_penetration_m and resting_penetration_m, m.
+  void record(std::map<std::string, double>& metrics) const {
+    metrics["max_penetration_m"] = max_;
+    metrics["resting_penetration_m"] = resting_;
+  }
+
+ private:
+  const DrapeSpec& spec_;
+  double duration_;
+  double max_ = 0.0, resting_ = 0.0;
 };
 
 // (5) scaling: the catenary scene at a fixed resolution (no adaptivity), time per step only.

@@ -260,20 +260,14 @@ Trial drape(const DrapeSpec& spec, const Setting& setting, const Limits& limits)
                 rod.massDamping, h, setting);
   const double duration = limits.seconds > 0 ? limits.seconds : spec.seconds;
   Trial trial;
-  double maxPenetration = 0, restingPenetration = 0;
+  DrapePenetration penetration(spec, duration);
   runWorld(
       world, h, duration, limits, trial, [](double) {},
-      [&](double t) {
-        double deepest = 0;
-        world.forEachPoint(4, [&](const Eigen::Vector3d& p) { deepest = std::max(deepest, spec.penetration(p)); });
-        maxPenetration = std::max(maxPenetration, deepest);
-        if (t > duration - spec.restingWindow) restingPenetration = std::max(restingPenetration, deepest);
-      });
+      [&](double t) { penetration.sample(t, [&](const auto& visit) { world.forEachPoint(4, visit); }); });
   double highest = -1e9;
   world.forEachPoint(1, [&](const Eigen::Vector3d& p) { highest = std::max(highest, p.y()); });
   trial.dofs = 3 * setting.resolution;
-  trial.metrics["max_penetration_m"] = maxPenetration;
-  trial.metrics["resting_penetration_m"] = restingPenetration;
+  penetration.record(trial.metrics);
   trial.metrics["highest_m"] = highest;
   return trial;
 }

@@ -148,24 +148,21 @@ Trial drape(const DrapeSpec& spec, const Setting& setting, const Limits& limits)
   const double duration = limits.seconds > 0 ? limits.seconds : spec.seconds;
   demos::DrapeScene scene(settings);
   Trial trial;
-  double maxPenetration = 0.0;
-  double restingPenetration = 0.0;
+  DrapePenetration penetration(spec, duration);
   int maxControlPoints = 0;
   runScene(scene, duration, limits, trial, [&](double t) {
     const Rod& rod = scene.rope().rod();
     maxControlPoints = std::max(maxControlPoints, rod.controlPointCount());
-    double deepest = 0.0;
-    constexpr int kSamples = 200;
-    for (int i = 0; i <= kSamples; ++i) {
-      const double s = rod.beginParameter() + (rod.endParameter() - rod.beginParameter()) * i / kSamples;
-      deepest = std::max(deepest, spec.penetration(rod.position(std::min(s, rod.endParameter()))));
-    }
-    maxPenetration = std::max(maxPenetration, deepest);
-    if (t > duration - spec.restingWindow) restingPenetration = std::max(restingPenetration, deepest);
+    penetration.sample(t, [&](const auto& visit) {
+      constexpr int kSamples = 200;
+      for (int i = 0; i <= kSamples; ++i) {
+        const double s = rod.beginParameter() + (rod.endParameter() - rod.beginParameter()) * i / kSamples;
+        visit(rod.position(std::min(s, rod.endParameter())));
+      }
+    });
   });
   trial.dofs = 3 * scene.rope().rod().controlPointCount();
-  trial.metrics["max_penetration_m"] = maxPenetration;
-  trial.metrics["resting_penetration_m"] = restingPenetration;
+  penetration.record(trial.metrics);
   trial.metrics["highest_m"] = scene.highestPoint();
   trial.metrics["max_control_points"] = maxControlPoints;
   return trial;

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "rope/common/error.h"
+#include "support/bad_settings.h"
 
 namespace rope::render {
 namespace {
@@ -63,32 +64,14 @@ TEST(Camera, FramingFromStraightAbove) {
 }
 
 TEST(Camera, ValidationNamesTheField) {
-  auto expectParameter = [](const Camera& camera, const std::string& parameter) {
-    try {
-      camera.validate();
-      ADD_FAILURE() << parameter;
-    } catch (const InvalidArgument& e) {
-      EXPECT_EQ(e.parameter(), parameter) << e.what();
-    }
-  };
-  Camera camera;
-  camera.eye = camera.target;
-  expectParameter(camera, "camera.target");
-  camera = Camera{};
-  camera.up = camera.target - camera.eye;
-  expectParameter(camera, "camera.up");
-  camera = Camera{};
-  camera.eye.x() = std::nan("");
-  expectParameter(camera, "camera.eye");
-  camera = Camera{};
-  camera.verticalFovDegrees = 180.0;
-  expectParameter(camera, "camera.verticalFovDegrees");
-  camera = Camera{};
-  camera.nearPlane = 0.0;
-  expectParameter(camera, "camera.nearPlane");
-  camera = Camera{};
-  camera.farPlane = camera.nearPlane;
-  expectParameter(camera, "camera.farPlane");
+  rope::test::expectEachRejected<Camera>(
+      {{"camera.target", [](Camera& c) { c.eye = c.target; }},
+       {"camera.up", [](Camera& c) { c.up = c.target - c.eye; }},
+       {"camera.eye", [](Camera& c) { c.eye.x() = std::nan(""); }},
+       {"camera.verticalFovDegrees", [](Camera& c) { c.verticalFovDegrees = 180.0; }},
+       {"camera.nearPlane", [](Camera& c) { c.nearPlane = 0.0; }},
+       {"camera.farPlane", [](Camera& c) { c.farPlane = c.nearPlane; }}},
+      [](const Camera& camera) { camera.validate(); });
   EXPECT_THROW(frameBoundingBox(BoundingBox{}, 1.0), InvalidArgument);
   BoundingBox box;
   box.extend(Vec3::Zero());

@@ -9,6 +9,7 @@
 
 #include "render/png_writer.h"
 #include "rope/common/error.h"
+#include "support/bad_settings.h"
 
 namespace rope::render {
 namespace {
@@ -107,29 +108,13 @@ TEST(VideoWriter, MissingFfmpegIsAClearErrorAndPngStillWorks) {
 }
 
 TEST(VideoWriter, RejectsOddSizesAndBadSettings) {
-  auto expectParameter = [](const VideoSettings& settings, const std::string& parameter) {
-    try {
-      VideoWriter video(::testing::TempDir() + "never.mp4", settings);
-      ADD_FAILURE() << parameter;
-    } catch (const InvalidArgument& e) {
-      EXPECT_EQ(e.parameter(), parameter) << e.what();
-    }
-  };
-  VideoSettings settings;
-  settings.width = 641;
-  expectParameter(settings, "settings.width");
-  settings = VideoSettings{};
-  settings.height = 479;
-  expectParameter(settings, "settings.height");
-  settings = VideoSettings{};
-  settings.height = 0;
-  expectParameter(settings, "settings.height");
-  settings = VideoSettings{};
-  settings.framesPerSecond = 0;
-  expectParameter(settings, "settings.framesPerSecond");
-  settings = VideoSettings{};
-  settings.crf = 52;
-  expectParameter(settings, "settings.crf");
+  using S = VideoSettings;
+  rope::test::expectEachRejected<S>({{"settings.width", [](S& s) { s.width = 641; }},
+                                     {"settings.height", [](S& s) { s.height = 479; }},
+                                     {"settings.height", [](S& s) { s.height = 0; }},
+                                     {"settings.framesPerSecond", [](S& s) { s.framesPerSecond = 0; }},
+                                     {"settings.crf", [](S& s) { s.crf = 52; }}},
+                                    [](const S& settings) { VideoWriter video(::testing::TempDir() + "never.mp4", settings); });
 }
 
 TEST(VideoWriter, WrongFrameSizeAndFfmpegFailuresAreReported) {

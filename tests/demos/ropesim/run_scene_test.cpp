@@ -28,12 +28,17 @@ std::string readFile(const std::filesystem::path& path) {
   return text.str();
 }
 
+// ropesim's --stats of `scene` simulated without rendering for `seconds` at 10 frames per second.
+rope::test::JsonValue statsOfRun(const std::string& scene, const std::string& seconds) {
+  const std::filesystem::path stats = scratch(scene + ".json");
+  runScene(parseRopesimOptions(
+      {scene, "--no-render", "--seconds", seconds, "--fps", "10", "--quiet", "--stats", stats.string()}));
+  return rope::test::parseJson(readFile(stats));
+}
+
 // The --stats numbers must agree with the same scene simulated here, step by step.
 TEST(RunScene, StatsJsonAgreesWithTheSimulation) {
-  RopesimOptions options = parseRopesimOptions({"hang", "--no-render", "--seconds", "2", "--fps", "10",
-                                                "--quiet", "--stats", scratch("hang.json").string()});
-  runScene(options);
-  const rope::test::JsonValue json = rope::test::parseJson(readFile(scratch("hang.json")));
+  const rope::test::JsonValue json = statsOfRun("hang", "2");
 
   HangScene reference(HangSceneSettings{});
   double maxStrain = 0.0;
@@ -63,10 +68,7 @@ TEST(RunScene, StatsJsonAgreesWithTheSimulation) {
 
 // The self-contact figures of the knot scene (the main job) agree with the simulation too.
 TEST(RunScene, KnotStatsReportSelfOverlapAndTheKnotSeries) {
-  RopesimOptions options = parseRopesimOptions({"knot", "--no-render", "--seconds", "1", "--fps", "10",
-                                                "--quiet", "--stats", scratch("knot.json").string()});
-  runScene(options);
-  const rope::test::JsonValue json = rope::test::parseJson(readFile(scratch("knot.json")));
+  const rope::test::JsonValue json = statsOfRun("knot", "1");
 
   KnotScene reference(KnotSceneSettings{});
   double maxOverlap = 0.0, maxPenetration = 0.0, lastFrameKnotLength = 0.0;

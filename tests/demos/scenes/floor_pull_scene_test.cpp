@@ -6,6 +6,7 @@
 #include <string>
 
 #include "rope/common/error.h"
+#include "support/bad_settings.h"
 
 namespace rope::demos {
 namespace {
@@ -82,26 +83,12 @@ TEST(FloorPullScene, PullIsTheRopesHorizontalGravityWithDefaultsOtherwise) {
 }
 
 TEST(FloorPullScene, RejectsBadSettingsNamingTheField) {
-  auto expectRejected = [](FloorPullSceneSettings settings, const std::string& field) {
-    try {
-      FloorPullScene scene(settings);
-      ADD_FAILURE() << field << " was accepted";
-    } catch (const InvalidArgument& error) {
-      EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
-    }
-  };
-  FloorPullSceneSettings settings;
-  settings.friction = -0.1;
-  expectRejected(settings, "settings.friction");
-  settings = {};
-  settings.pullAcceleration = std::nan("");
-  expectRejected(settings, "settings.pullAcceleration");
-  settings = {};
-  settings.ropeLength = 0.0;
-  expectRejected(settings, "settings.ropeLength");
-  settings = {};
-  settings.gravity = -9.81;
-  expectRejected(settings, "settings.gravity");
+  using S = FloorPullSceneSettings;
+  test::expectEachRejected<S>({{"settings.friction", [](S& s) { s.friction = -0.1; }},
+                               {"settings.pullAcceleration", [](S& s) { s.pullAcceleration = std::nan(""); }},
+                               {"settings.ropeLength", [](S& s) { s.ropeLength = 0.0; }},
+                               {"settings.gravity", [](S& s) { s.gravity = -9.81; }}},
+                              [](const S& settings) { FloorPullScene scene(settings); });
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "rope/common/error.h"
+#include "support/bad_settings.h"
 
 namespace rope::demos {
 namespace {
@@ -137,26 +138,13 @@ TEST(KnotScene, PreformedKnotLeavesRoomBetweenItsStrands) {
 }
 
 TEST(KnotScene, RejectsBadSettingsNamingTheField) {
-  const auto expectField = [](KnotSceneSettings settings, const char* field) {
-    try {
-      KnotScene scene(settings);
-      ADD_FAILURE() << "accepted bad " << field;
-    } catch (const InvalidArgument& e) {
-      EXPECT_EQ(e.parameter(), field);
-    }
-  };
-  KnotSceneSettings settings;
-  settings.loopScale = 0.0;
-  expectField(settings, "settings.loopScale");
-  settings = KnotSceneSettings{};
-  settings.endGap = 1.5;
-  expectField(settings, "settings.endGap");
-  settings = KnotSceneSettings{};
-  settings.pullTension = std::numeric_limits<double>::quiet_NaN();
-  expectField(settings, "settings.pullTension");
-  settings = KnotSceneSettings{};
-  settings.rod.radius = -1.0;
-  expectField(settings, "settings.radius");
+  using S = KnotSceneSettings;
+  test::expectEachRejected<S>(
+      {{"settings.loopScale", [](S& s) { s.loopScale = 0.0; }},
+       {"settings.endGap", [](S& s) { s.endGap = 1.5; }},
+       {"settings.pullTension", [](S& s) { s.pullTension = std::numeric_limits<double>::quiet_NaN(); }},
+       {"settings.radius", [](S& s) { s.rod.radius = -1.0; }}},
+      [](const S& settings) { KnotScene scene(settings); });
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "rope/common/error.h"
+#include "support/bad_settings.h"
 
 namespace rope::demos {
 namespace {
@@ -92,17 +93,11 @@ TEST(PileScene, InitialCoilHasItsTurnsApart) {
 }
 
 TEST(PileScene, RejectsBadSettingsNamingTheField) {
-  PileSceneSettings settings;
-  settings.coilPitch = 0.01;  // turns would start in contact
-  try {
-    PileScene scene(settings);
-    ADD_FAILURE() << "accepted a pitch below 3 diameters";
-  } catch (const InvalidArgument& e) {
-    EXPECT_EQ(e.parameter(), "settings.coilPitch");
-  }
-  settings = PileSceneSettings{};
-  settings.tilt = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(PileScene{settings}, InvalidArgument);
+  using S = PileSceneSettings;
+  test::expectEachRejected<S>(
+      {{"settings.coilPitch", [](S& s) { s.coilPitch = 0.01; }},  // turns would start in contact
+       {"settings.tilt", [](S& s) { s.tilt = std::numeric_limits<double>::infinity(); }}},
+      [](const S& settings) { PileScene scene(settings); });
 }
 
 }  // namespace

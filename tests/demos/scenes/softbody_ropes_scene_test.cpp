@@ -8,6 +8,7 @@
 
 #include "rope/common/error.h"
 #include "rope/rod/rod_settings.h"
+#include "support/bad_settings.h"
 
 namespace rope::demos {
 namespace {
@@ -33,26 +34,12 @@ TEST(SoftBodyRopesScene, RopesMatchTheDefaultRopeAndLieStillOnTheBox) {
 }
 
 TEST(SoftBodyRopesScene, RejectsBadSettingsNamingTheField) {
-  auto expectRejected = [](SoftBodyRopesSceneSettings settings, const std::string& field) {
-    try {
-      SoftBodyRopesScene scene(settings);
-      ADD_FAILURE() << field << " was accepted";
-    } catch (const InvalidArgument& error) {
-      EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
-    }
-  };
-  SoftBodyRopesSceneSettings settings;
-  settings.segments = 1;
-  expectRejected(settings, "settings.segments");
-  settings = {};
-  settings.iterations = 0;
-  expectRejected(settings, "settings.iterations");
-  settings = {};
-  settings.friction = 1.5;
-  expectRejected(settings, "settings.friction");
-  settings = {};
-  settings.radius = std::nan("");
-  expectRejected(settings, "settings.radius");
+  using S = SoftBodyRopesSceneSettings;
+  test::expectEachRejected<S>({{"settings.segments", [](S& s) { s.segments = 1; }},
+                               {"settings.iterations", [](S& s) { s.iterations = 0; }},
+                               {"settings.friction", [](S& s) { s.friction = 1.5; }},
+                               {"settings.radius", [](S& s) { s.radius = std::nan(""); }}},
+                              [](const S& settings) { SoftBodyRopesScene scene(settings); });
 }
 
 }  // namespace

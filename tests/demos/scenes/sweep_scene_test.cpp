@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "rope/common/error.h"
+#include "support/bad_settings.h"
 
 namespace rope::demos {
 namespace {
@@ -41,17 +42,10 @@ TEST(SweepScene, HoseFollowsItsPathAndPushesTheBoxesAside) {
 }
 
 TEST(SweepScene, RejectsBadSettingsNamingTheField) {
-  SweepSceneSettings settings;
-  settings.boxSpacing = 0.04;  // boxes would overlap
-  try {
-    SweepScene scene(settings);
-    ADD_FAILURE() << "accepted overlapping boxes";
-  } catch (const InvalidArgument& e) {
-    EXPECT_EQ(e.parameter(), "settings.boxSpacing");
-  }
-  settings = SweepSceneSettings{};
-  settings.boxesPerSide = 0;
-  EXPECT_THROW(SweepScene{settings}, InvalidArgument);
+  using S = SweepSceneSettings;
+  test::expectEachRejected<S>({{"settings.boxSpacing", [](S& s) { s.boxSpacing = 0.04; }},  // boxes would overlap
+                               {"settings.boxesPerSide", [](S& s) { s.boxesPerSide = 0; }}},
+                              [](const S& settings) { SweepScene scene(settings); });
 }
 
 }  // namespace

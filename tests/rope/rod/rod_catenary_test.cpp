@@ -84,27 +84,33 @@ Rod settle(const RodSettings& settings, double seconds, double h) {
     const StepReport report = rod.step(h);
     EXPECT_TRUE(report.ok) << report.failure;
     if (!report.ok) break;
-    EXPECT_LE(report.controlPoints, settings.maxControlPoints);
   }
   return rod;
 }
 
+// Measured sag error against the exact elastic catenary of the rod's own law (the inextensible one
+// is 0.002 % shallower at EA = 78.5 kN) and the control points the rope settles on by itself (the
+// default cap of 128 is never approached):
+//   h = 1/240 s: +0.0194 %, 13 control points;  h = 1/60 s: -0.141 %, 11 control points.
+// The README publishes 0.02 % and 0.14 %; the bounds are 2.5x and 2x those.
 TEST(RodCatenary, StiffRopeSettlesToTheAnalyticCatenaryWithAtMost16ControlPoints) {
   RodSettings settings;
   settings.restLength = kLength;
   settings.linearDensity = 0.1;
-  settings.youngsModulus = 1e9;   // EA = 78.5 kN: strain ~1e-5, inextensible for this test
+  settings.youngsModulus = 1e9;   // EA = 78.5 kN: strain ~1e-5
   settings.bendingStiffness = 0.0;  // the catenary has no bending stiffness ([A]'s model)
   settings.massDamping = 3.0;
-  settings.maxControlPoints = 16;
-  for (double h : {1.0 / 240, 1.0 / 60}) {
+  ASSERT_GT(settings.maxControlPoints, 16);  // the default: what the rope settles on is its own choice
+  const ElasticCatenary elastic{settings.axialStiffness(), settings.linearDensity * kG, kLength};
+  const double expected = elastic.sag(kSpan);
+  EXPECT_NEAR(expected, inextensibleSag(kSpan, kLength), 3e-5 * expected);  // nearly inextensible
+  for (const auto& [h, bound] : {std::pair{1.0 / 240, 5e-4}, std::pair{1.0 / 60, 3e-3}}) {
     const Rod rod = settle(settings, 12.0, h);
     const double sag = -test::lowestY(rod);
-    const double expected = inextensibleSag(kSpan, kLength);
-    EXPECT_NEAR(sag, expected, 0.01 * expected) << "h = " << h;
+    EXPECT_NEAR(sag, expected, bound * expected) << "h = " << h;
     EXPECT_LE(rod.controlPointCount(), 16);
-    EXPECT_LT(rod.velocity(0.5 * kLength).norm(), 1e-3);
-    std::printf("[catenary h=1/%.0f] sag %.6f m, analytic %.6f m (%.3f%%), %d control points\n", 1.0 / h, sag,
+    EXPECT_LT(rod.velocity(0.5 * kLength).norm(), 1e-10);  // at rest (measured 2.8e-12 m/s)
+    std::printf("[catenary h=1/%.0f] sag %.6f m, analytic %.6f m (%.4f%%), %d control points\n", 1.0 / h, sag,
                 expected, 100.0 * (sag - expected) / expected, rod.controlPointCount());
   }
 }
@@ -120,7 +126,6 @@ TEST(RodCatenary, StiffRopeReachesTheCatenaryFromAStraightCompressedStart) {
   settings.bendingStiffness = 0.0;
   settings.massDamping = 3.0;
   settings.initialControlPoints = 12;
-  settings.maxControlPoints = 16;
   Rod rod = Rod::fromSegment(settings, Vec3(-0.5 * kSpan, 0, 0), Vec3(0.5 * kSpan, 0, 0));
   rod.pin(0.0);
   rod.pin(kLength);
@@ -129,9 +134,10 @@ TEST(RodCatenary, StiffRopeReachesTheCatenaryFromAStraightCompressedStart) {
     ASSERT_TRUE(report.ok) << report.failure;
   }
   const double sag = -test::lowestY(rod);
-  const double expected = inextensibleSag(kSpan, kLength);
-  EXPECT_NEAR(sag, expected, 0.01 * expected);
-  std::printf("[catenary from straight] sag %.6f m, analytic %.6f m (%.3f%%), %d control points\n", sag, expected,
+  const double expected = ElasticCatenary{settings.axialStiffness(), settings.linearDensity * kG, kLength}.sag(kSpan);
+  // Measured -0.031 % with 21 control points (default cap of 128; with a cap of 16 it was +0.032 %).
+  EXPECT_NEAR(sag, expected, 1e-3 * expected);
+  std::printf("[catenary from straight] sag %.6f m, analytic %.6f m (%.4f%%), %d control points\n", sag, expected,
               100.0 * (sag - expected) / expected, rod.controlPointCount());
 }
 
@@ -143,17 +149,17 @@ TEST(RodCatenary, SoftRopeAgreesWithTheElasticCatenary) {
   settings.youngsModulus = 20.0 / settings.area();  // EA = 20 N: several percent of strain
   settings.bendingStiffness = 0.0;
   settings.massDamping = 3.0;
-  settings.maxControlPoints = 16;
   const Rod rod = settle(settings, 12.0, 1.0 / 240);
   const double sag = -test::lowestY(rod);
   const ElasticCatenary elastic{settings.axialStiffness(), settings.linearDensity * kG, kLength};
   const double expected = elastic.sag(kSpan);
   const double rigid = inextensibleSag(kSpan, kLength);
-  EXPECT_NEAR(sag, expected, 0.01 * expected);
+  EXPECT_NEAR(sag, expected, 3e-4 * expected);  // measured +0.0087 %
   EXPECT_GT(sag - rigid, 0.03 * rigid);  // the test can tell the two apart
   EXPECT_GT(rod.maxStrain(), 0.03);
-  std::printf("[elastic catenary] sag %.6f m, elastic analytic %.6f m (%.3f%%), inextensible %.6f m, max strain %.4f\n",
-              sag, expected, 100.0 * (sag - expected) / expected, rigid, rod.maxStrain());
+  std::printf("[elastic catenary] sag %.6f m, elastic analytic %.6f m (%.4f%%), inextensible %.6f m, max strain %.4f, "
+              "%d control points\n", sag, expected, 100.0 * (sag - expected) / expected, rigid, rod.maxStrain(),
+              rod.controlPointCount());
 }
 
 }  // namespace

@@ -160,8 +160,8 @@ TEST(RodClamp, SmallDeflectionCantileversMatchEulerBernoulli) {
     EXPECT_NEAR(-weight.tip.y(), 1e-3 / 8.0, 5e-8 * 1e-3 / 8.0) << n;
     EXPECT_NEAR(tip.tip.y(), elastica(1.0, 1.0, 1e-3, 0.0).y, 1e-9 * 1e-3 / 3.0) << n;
     EXPECT_NEAR(weight.tip.y(), elastica(1.0, 1.0, 0.0, 1e-3).y, 1e-9 * 1e-3 / 8.0) << n;
-    EXPECT_LT(tip.worstTangent, 1e-9);
-    EXPECT_LT(weight.worstTangent, 1e-9);
+    EXPECT_LT(tip.worstTangent, 1e-14);
+    EXPECT_LT(weight.worstTangent, 1e-14);
     EXPECT_LT(tip.worstPosition, 1e-12);
   }
 }
@@ -185,7 +185,8 @@ TEST(RodClamp, LargeDeflectionCantileversMatchTheElastica) {
     const Settled adaptive = cantilever(16, true, c.alpha, c.beta, 1.0 / 240, 1e-11);
     ASSERT_TRUE(fixed.ok && adaptive.ok) << c.alpha << " " << c.beta;
     EXPECT_LT((fixed.tip - expected).norm(), 1e-4) << c.alpha << " " << c.beta;
-    EXPECT_LT((adaptive.tip - expected).norm(), 5e-3) << c.alpha << " " << c.beta;
+    // Measured worst over the cases: 4.19e-5 L with 16 fixed control points, 1.03e-3 L adaptive.
+    EXPECT_LT((adaptive.tip - expected).norm(), 2.5e-3) << c.alpha << " " << c.beta;
     EXPECT_LT(adaptive.controlPoints, 16);
     worstFixed = std::max(worstFixed, (fixed.tip - expected).norm());
     worstAdaptive = std::max(worstAdaptive, (adaptive.tip - expected).norm());
@@ -193,7 +194,7 @@ TEST(RodClamp, LargeDeflectionCantileversMatchTheElastica) {
     EXPECT_LT(fixed.worstPosition, 1e-12);
     EXPECT_LT(adaptive.worstPosition, 1e-12);
   }
-  EXPECT_LT(worstTangent, 1e-9);
+  EXPECT_LT(worstTangent, 2e-15);  // measured 6.8e-16 (the README's 1e-15)
   RecordProperty("worst_tip_error_fixed_16_over_L", formatValue(worstFixed));
   RecordProperty("worst_tip_error_adaptive_over_L", formatValue(worstAdaptive));
   RecordProperty("worst_clamp_tangent_error", formatValue(worstTangent));
@@ -239,7 +240,7 @@ TEST(RodClamp, MovingClampsHoldPointAndTangentAtEveryStep) {
     worstTangent = std::max(worstTangent, rod.tangent(1.0).cross(Vec3::UnitX()).norm());
   }
   EXPECT_LT(worstPoint, 1e-12);
-  EXPECT_LT(worstTangent, 1e-9);
+  EXPECT_LT(worstTangent, 1e-14);  // measured 2.9e-15
   RecordProperty("worst_point_error_m", formatValue(worstPoint));
   RecordProperty("worst_tangent_error", formatValue(worstTangent));
   // The piece between the two welds is bent (the interior direction turned by up to 30°).

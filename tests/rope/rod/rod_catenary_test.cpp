@@ -76,6 +76,17 @@ PointList vShape() {
   return v;
 }
 
+// The stiff rope of [A]'s catenary: EA = 78.5 kN (strain ~1e-5), no bending stiffness, damped.
+RodSettings stiffRope() {
+  RodSettings settings;
+  settings.restLength = kLength;
+  settings.linearDensity = 0.1;
+  settings.youngsModulus = 1e9;
+  settings.bendingStiffness = 0.0;  // the catenary has no bending stiffness ([A]'s model)
+  settings.massDamping = 3.0;
+  return settings;
+}
+
 Rod settle(const RodSettings& settings, double seconds, double h) {
   Rod rod = Rod::fromPolyline(settings, vShape());
   rod.pin(rod.beginParameter(), Vec3(-0.5 * kSpan, 0, 0));
@@ -95,12 +106,7 @@ Rod settle(const RodSettings& settings, double seconds, double h) {
 //   h = 1/240 s: +0.0194 %, 13 control points;  h = 1/60 s: -0.141 %, 11 control points.
 // The README publishes 0.02 % and 0.14 %; the bounds are 2.5x and 2x those.
 TEST(RodCatenary, StiffRopeSettlesToTheAnalyticCatenaryWithAtMost16ControlPoints) {
-  RodSettings settings;
-  settings.restLength = kLength;
-  settings.linearDensity = 0.1;
-  settings.youngsModulus = 1e9;   // EA = 78.5 kN: strain ~1e-5
-  settings.bendingStiffness = 0.0;  // the catenary has no bending stiffness ([A]'s model)
-  settings.massDamping = 3.0;
+  const RodSettings settings = stiffRope();
   ASSERT_GT(settings.maxControlPoints, 16);  // the default: what the rope settles on is its own choice
   const ElasticCatenary elastic{settings.axialStiffness(), settings.linearDensity * kG, kLength};
   const double expected = elastic.sag(kSpan);
@@ -120,12 +126,7 @@ TEST(RodCatenary, StiffRopeReachesTheCatenaryFromAStraightCompressedStart) {
   // The violent path: a straight rope of rest length 1.25 m squeezed between supports 1 m apart
   // buckles under 20 % compression and falls into the catenary. Exercises the Gauss–Newton clamp and
   // the locking-free stretching rule (an exactly integrated rope locks on this path).
-  RodSettings settings;
-  settings.restLength = kLength;
-  settings.linearDensity = 0.1;
-  settings.youngsModulus = 1e9;
-  settings.bendingStiffness = 0.0;
-  settings.massDamping = 3.0;
+  RodSettings settings = stiffRope();
   settings.initialControlPoints = 12;
   Rod rod = Rod::fromSegment(settings, Vec3(-0.5 * kSpan, 0, 0), Vec3(0.5 * kSpan, 0, 0));
   rod.pin(0.0);
@@ -147,12 +148,7 @@ TEST(RodCatenary, StiffRopeReachesTheCatenaryFromAStraightCompressedStart) {
 // elastic catenary. The settled state of the implicit step does not depend on h, so only the
 // resolution is refined.
 TEST(RodCatenary, SagErrorFallsAtHighOrderUnderRefinement) {
-  RodSettings settings;
-  settings.restLength = kLength;
-  settings.linearDensity = 0.1;
-  settings.youngsModulus = 1e9;
-  settings.bendingStiffness = 0.0;
-  settings.massDamping = 3.0;
+  RodSettings settings = stiffRope();
   settings.adaptive = false;
   const double expected = ElasticCatenary{settings.axialStiffness(), settings.linearDensity * kG, kLength}.sag(kSpan);
   const double depth = std::sqrt(0.25 * kLength * kLength - 0.25 * kSpan * kSpan);

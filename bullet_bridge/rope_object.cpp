@@ -99,6 +99,10 @@ std::unique_ptr<RopeObject> RopeObject::cut(double s) {
   return piece;
 }
 
+void RopeObject::applyForce(double s, const btVector3& force) { rod_.addForce(s, toVec(force)); }
+
+void RopeObject::applyImpulse(double s, const btVector3& impulse) { rod_.addImpulse(s, toVec(impulse)); }
+
 void RopeObject::enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld) {
   proxies_->addToWorld(collisionWorld, settings_.collisionGroup, settings_.collisionMask);
   world_ = &world;
@@ -224,6 +228,7 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
   for (int pass = 1;; ++pass) {
     lastStep_.solvePasses = pass;
     rod_.clearLoads();
+    rod_.addLoads(userLoads_);
     for (const PendingSpring& pending : pending_)
       rod_.addSpring(pending.s, pending.spring.force, pending.spring.stiffness, pending.spring.damping);
     bodyContacts_.queue(rod_);
@@ -235,6 +240,7 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
 }
 
 void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
+  rod_.takeLoads(userLoads_);  // queued on rod() or by applyForce since the last substep
   contacts_.clear();
   pending_.clear();
   lastStep_ = RopeStepRecord();

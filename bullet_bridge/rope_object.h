@@ -10,8 +10,9 @@
 //   dynamicsWorld.stepSimulation(1.0 / 60.0, 4, 1.0 / 240.0);
 //   ropes.removeRope(rope);
 //
-// The rope's gravity, material and discretisation come from its RodSettings (set the gravity to the
-// world's). Between steps the rod may be read freely; change it (pins, setControlPoints, ...) only
+// The rope's material and discretisation come from its RodSettings; its gravity from the Bullet world
+// it is in (every substep, BulletRopeSettings::gravitySource / gravityScale). Between steps the rod
+// may be read freely; change it (pins, setControlPoints, ...) only
 // through rod() while no stepSimulation runs.
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
@@ -61,6 +62,15 @@ class RopeObject {
   // Throws for an unknown id ("id").
   void removeAttachment(int id);
   const std::vector<Attachment>& attachments() const { return attachments_; }
+
+  // ---- loads ----
+  // A force (N) or impulse (N s) at C(s), world frame, acting in the next substep only, like the rod's
+  // own loads (Rod::addForce / addImpulse, which work here too: a substep takes every load queued on
+  // rod() and clears them). A force that lasts is applied again before every substep, e.g. from
+  // RopeWorld::setSubstepCallback, which runs after each one. Throws InvalidArgument naming "s" or
+  // "force[i]" / "impulse[i]" and queues nothing.
+  void applyForce(double s, const btVector3& force);
+  void applyImpulse(double s, const btVector3& impulse);
 
   // ---- cutting ([A] §5.1) ----
   // Cuts the rope at s (strictly inside; not exactly at a pin or a body attachment): this object keeps
@@ -135,6 +145,7 @@ class RopeObject {
   std::vector<RopeContactRecord> contacts_;
   RopeStepRecord lastStep_;
   std::vector<PendingSpring> pending_;
+  Rod::LoadQueue userLoads_;  // what the user queued on the rod for this substep
   BodyContacts bodyContacts_;
 };
 

@@ -20,6 +20,11 @@ void BulletRopeSettings::validate() const {
     throw InvalidArgument("settings.concentratedContactRatio", formatValue(concentratedContactRatio),
                           "must be <= 1");
   }
+  requireFinite("settings.gravityScale", gravityScale);
+  if (gravitySource != GravitySource::kWorld && gravitySource != GravitySource::kRod) {
+    throw InvalidArgument("settings.gravitySource", std::to_string(static_cast<int>(gravitySource)),
+                          "must be kWorld or kRod");
+  }
   requirePositive("settings.contactStiffness", contactStiffness);
   requireNonNegative("settings.contactDamping", contactDamping);
   requireNonNegative("settings.speculativeDamping", speculativeDamping);

@@ -54,6 +54,15 @@ struct BulletRopeSettings {
   // (viscous "sticking"), above it it is mu * f_n against the sliding direction.
   double frictionVelocity = 1.0e-3;
 
+  // ---- gravity ----
+  // Where the rope's gravity comes from. kWorld: every substep the rope takes gravityScale times its
+  // Bullet world's getGravity(), like a rigid body (set the world's gravity and the ropes follow;
+  // the rod's RodSettings::gravity is overwritten). kRod: the rod's own RodSettings::gravity (change
+  // it with Rod::setGravity), e.g. a weightless rope in a world with gravity.
+  enum class GravitySource { kWorld, kRod };
+  GravitySource gravitySource = GravitySource::kWorld;
+  double gravityScale = 1.0;  // finite, any sign; used with kWorld
+
   // ---- rope-rope and self-contact: point contacts (rope_rope_contact.h) ----
   // Penalty stiffness of one contact point, N/m, > 0; its damping along the normal, N s/m, >= 0; and
   // the speculative damper of a closing contact, N s/m, >= 0 (see lineSpeculativeDamping). Two ropes

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <tuple>
 
@@ -171,7 +172,16 @@ void RopeWorld::substep(double h) {
       return a->getWorldArrayIndex() < b->getWorldArrayIndex();
     });
     list.erase(std::unique(list.begin(), list.end()), list.end());
-    ropes_[r]->beginSubstep(list, h);
+    RopeObject& rope = *ropes_[r];
+    if (rope.settings().gravitySource == BulletRopeSettings::GravitySource::kWorld) {
+      const btVector3 g = world_.getGravity() * static_cast<btScalar>(rope.settings().gravityScale);
+      const Vec3 gravity(static_cast<double>(g.x()), static_cast<double>(g.y()), static_cast<double>(g.z()));
+      // A non-finite world gravity leaves the rope's as it was (no arithmetic on it: FP traps).
+      if (std::isfinite(gravity.x()) && std::isfinite(gravity.y()) && std::isfinite(gravity.z())) {
+        rope.rod().setGravity(gravity);
+      }
+    }
+    rope.beginSubstep(list, h);
   }
 
   // Rope-rope and self-contact, coupled into the trials of all ropes at once; pairs in a fixed order

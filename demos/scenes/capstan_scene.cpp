@@ -117,6 +117,8 @@ CapstanScene::CapstanScene(const CapstanSceneSettings& settings) : settings_(set
   const PointList points = capstanPolyline(settings);  // validates
   bullet::BulletRopeSettings bridge = settings.bridge;
   bridge.friction = settings.friction;
+  // The law is for a weightless rope (RodSettings::gravity = 0) in a world whose gravity pulls the loads.
+  bridge.gravitySource = bullet::BulletRopeSettings::GravitySource::kRod;
 
   const btScalar height = static_cast<btScalar>(settings.height);
   if (settings.obstacle == Settings::Obstacle::kCylinder) {

@@ -38,6 +38,8 @@ FloorPullScene::FloorPullScene(const FloorPullSceneSettings& settings)
   rod.gravity = Vec3(settings.pullAcceleration, -settings.gravity, 0.0);
   bullet::BulletRopeSettings bridge = settings.bridge;
   bridge.friction = settings.friction;
+  // The pull is the horizontal part of the rope's own gravity (RodSettings::gravity), not the world's.
+  bridge.gravitySource = bullet::BulletRopeSettings::GravitySource::kRod;
   const double half = 0.5 * settings.ropeLength;
   // Lying on the floor: the centre line one radius above it.
   rope_ = std::make_unique<bullet::RopeObject>(

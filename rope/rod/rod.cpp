@@ -225,6 +225,13 @@ double Rod::gravityEnergy() const {
   return sum;
 }
 
+void Rod::setGravity(const Vec3& gravity) {
+  requireFiniteVector("gravity", gravity);
+  if (settings_.gravity == gravity) return;  // the common case in a world: nothing to invalidate
+  settings_.gravity = gravity;
+  trialValid_ = false;
+}
+
 void Rod::setControlPoints(const PointList& points) {
   requirePoints("points", points, points_.size());
   points_ = points;
@@ -403,6 +410,23 @@ void Rod::queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffn
   // Only the symmetric part is meaningful for a potential/dissipative interaction.
   springs_.push_back({s, force, 0.5 * (stiffness + stiffness.transpose()), 0.5 * (damping + damping.transpose()),
                       interaction});
+  trialValid_ = false;
+}
+
+void Rod::takeLoads(LoadQueue& queue) {
+  queue.loads.clear();
+  queue.springs.clear();
+  queue.marked.clear();
+  queue.loads.swap(loads_);
+  queue.springs.swap(springs_);
+  queue.marked.swap(markedInteractions_);
+  trialValid_ = false;
+}
+
+void Rod::addLoads(const LoadQueue& queue) {
+  loads_.insert(loads_.end(), queue.loads.begin(), queue.loads.end());
+  springs_.insert(springs_.end(), queue.springs.begin(), queue.springs.end());
+  markedInteractions_.insert(markedInteractions_.end(), queue.marked.begin(), queue.marked.end());
   trialValid_ = false;
 }
 

@@ -121,6 +121,11 @@ class Rod {
   double potentialEnergy() const { return stretchingEnergy() + bendingEnergy() + gravityEnergy(); }
   double totalEnergy() const { return kineticEnergy() + potentialEnergy(); }
 
+  // Gravity from the next step on (m/s^2, finite, else InvalidArgument "gravity[i]"): replaces
+  // settings().gravity. A rope in a Bullet world follows the world's gravity through this by default
+  // (BulletRopeSettings::gravitySource).
+  void setGravity(const Vec3& gravity);
+
   // Replace positions and/or velocities (same count, finite; "points"/"velocities" in errors).
   void setControlPoints(const PointList& points);
   void setVelocities(const PointList& velocities);
@@ -217,6 +222,26 @@ class Rod {
   void queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping,
                    bool interaction);
 
+
+ public:
+  // The queued loads as a value, for a bridge that solves one step several times with loads of its
+  // own: takeLoads() moves the rod's queue into `queue` (whose old contents are dropped; the buffers
+  // are exchanged, so a steady state allocates nothing), addLoads() queues them again (they were
+  // validated when they were first queued).
+  class LoadQueue {
+   public:
+    bool empty() const { return loads.empty() && springs.empty() && marked.empty(); }
+
+   private:
+    friend class Rod;
+    std::vector<PointLoad> loads;
+    std::vector<Spring> springs;
+    std::vector<double> marked;
+  };
+  void takeLoads(LoadQueue& queue);
+  void addLoads(const LoadQueue& queue);
+
+ private:
   Rod(const RodSettings& settings, KnotVector knots, PointList points, PointList velocities,
       PointList rest, int gaussCount);
   static Rod fromCurve(const RodSettings& settings, const KnotVector& knots, const PointList& points,

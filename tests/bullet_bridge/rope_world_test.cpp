@@ -355,5 +355,82 @@ TEST(RopeWorldScenario, WorksInSoftRigidWorld) {
   world.removeRigidBody(&ground);
 }
 
+// Gravity comes from the world by default, every substep, scaled by gravityScale; kRod keeps the
+// rod's own. A free rope's centre of mass falls at exactly the world's gravity (backward Euler is
+// exact for a uniform field), and follows a change of the world's gravity at once.
+TEST(RopeWorldScenario, RopesFollowTheWorldsGravityUnlessTheyKeepTheirOwn) {
+  demos::PhysicsWorld physics(btVector3(0, 0, -9.81));  // z up, unlike RodSettings' default
+  RodSettings rod;  // gravity (0, -9.81, 0), no damping
+  RopeObject follows(Rod::fromSegment(rod, Vec3(0, 0, 1), Vec3(1, 0, 1)));
+  BulletRopeSettings halved;
+  halved.gravityScale = 0.5;
+  RopeObject scaled(Rod::fromSegment(rod, Vec3(0, 2, 1), Vec3(1, 2, 1)), halved);
+  BulletRopeSettings own;
+  own.gravitySource = BulletRopeSettings::GravitySource::kRod;
+  RodSettings weightless = rod;
+  weightless.gravity = Vec3::Zero();
+  RopeObject keeps(Rod::fromSegment(weightless, Vec3(0, 4, 1), Vec3(1, 4, 1)), own);
+  for (RopeObject* rope : {&follows, &scaled, &keeps}) physics.ropes().addRope(*rope);
+  stepWorld(physics.world(), 120);  // 0.5 s
+  const auto velocity = [](const RopeObject& rope) -> Vec3 { return rope.rod().momentum() / rope.rod().mass(); };
+  EXPECT_LT((velocity(follows) - Vec3(0, 0, -9.81 * 0.5)).norm(), 1e-9 * 9.81);
+  EXPECT_LT((velocity(scaled) - Vec3(0, 0, -0.5 * 9.81 * 0.5)).norm(), 1e-9 * 9.81);
+  EXPECT_LT(velocity(keeps).norm(), 1e-12);  // weightless: only round-off of its unstretched state
+  EXPECT_EQ(follows.rod().settings().gravity, Vec3(0, 0, -9.81));
+  // The world's gravity changes: the ropes that follow it feel the new one from the next substep.
+  physics.world().setGravity(btVector3(0, 0, 0));
+  const Vec3 before = velocity(follows);
+  stepWorld(physics.world(), 60);
+  EXPECT_LT((velocity(follows) - before).norm(), 1e-12);
+}
+
+TEST(RopeWorld, GravitySettingsRejectBadInputNamingTheField) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  BulletRopeSettings bad;
+  bad.gravityScale = nan;
+  try {
+    RopeObject rope(Rod::fromSegment(RodSettings(), Vec3(0, 1, 0), Vec3(1, 1, 0)), bad);
+    ADD_FAILURE() << "gravityScale = NaN was accepted";
+  } catch (const InvalidArgument& error) {
+    EXPECT_NE(std::string(error.what()).find("settings.gravityScale"), std::string::npos) << error.what();
+  }
+  Rod rod = Rod::fromSegment(RodSettings(), Vec3(0, 1, 0), Vec3(1, 1, 0));
+  EXPECT_THROW(rod.setGravity(Vec3(0, nan, 0)), InvalidArgument);
+  EXPECT_EQ(rod.settings().gravity, RodSettings().gravity);  // unchanged
+}
+
+// Loads on a rope in a world act in the next substep, whether given to the RopeObject or queued on
+// its rod: an impulse J changes the momentum by exactly J, a force F by F h, and neither acts again.
+TEST(RopeWorldScenario, ForcesAndImpulsesActInTheNextSubstepOnly) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  // Knot removal changes a moving rope's momentum by up to mass * removalVelocityErrorBound (measured
+  // here: 3e-6 N s); this test checks the loads, so the knot vector stays fixed.
+  RodSettings fixedKnots;
+  fixedKnots.adaptive = false;
+  RopeObject rope(Rod::fromSegment(fixedKnots, Vec3(0, 1, 0), Vec3(1, 1, 0)));
+  physics.ropes().addRope(rope);
+  const Vec3 impulse(0.01, -0.02, 0.005);
+  rope.applyImpulse(0.3, btVector3(0.01, -0.02, 0.005));
+  stepWorld(physics.world(), 1);
+  EXPECT_LT((rope.rod().momentum() - impulse).norm(), 1e-12 * impulse.norm());
+  stepWorld(physics.world(), 1);  // acted once
+  EXPECT_LT((rope.rod().momentum() - impulse).norm(), 1e-12 * impulse.norm());
+  const Vec3 force(0.5, 0.0, -0.25);
+  rope.applyForce(0.7, btVector3(0.5, 0.0, -0.25));
+  rope.rod().addForce(0.1, force);  // queued on the rod: not dropped either
+  stepWorld(physics.world(), 1);
+  const Vec3 expected = impulse + 2.0 * kStep * force;
+  EXPECT_LT((rope.rod().momentum() - expected).norm(), 1e-12 * expected.norm());
+
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& bad : {std::function<void()>([&] { rope.applyForce(nan, btVector3(1, 0, 0)); }),
+                          std::function<void()>([&] { rope.applyForce(0.5, btVector3(btScalar(nan), 0, 0)); }),
+                          std::function<void()>([&] { rope.applyImpulse(2.0, btVector3(1, 0, 0)); })}) {
+    EXPECT_THROW(bad(), InvalidArgument);
+  }
+  stepWorld(physics.world(), 1);  // nothing was queued by the refused calls
+  EXPECT_LT((rope.rod().momentum() - expected).norm(), 1e-12 * expected.norm());
+}
+
 }  // namespace
 }  // namespace rope::bullet

@@ -57,9 +57,9 @@ RodSettings KnotSceneSettings::defaultRod() {
 bullet::BulletRopeSettings KnotSceneSettings::defaultBridge() {
   bullet::BulletRopeSettings bridge;
   bridge.friction = 0.3;
-  // Swept boxes padded by 2.5 mm instead of 1 cm: the cord is slow against its own size, and with the
-  // larger margin every capsule's box overlapped dozens of others in a tight knot or a heap.
-  bridge.speculativeMargin = 0.0025;
+  // Everything else is the library's default, the speculative margin (1 cm) included: a 2.5 mm margin
+  // gave the knot the same motion bit for bit at 0.80x the cost per step and the pile a deeper impact
+  // into the ground (2.8 mm against 2.0 mm) at 0.93x.
   return bridge;
 }
 

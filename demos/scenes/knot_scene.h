@@ -34,8 +34,8 @@ struct KnotSceneSettings {
 
   // 5 mm radius limp nylon cord (E = 1e8 Pa, EI = 1e-4 N m^2), damped; up to 160 control points.
   static RodSettings defaultRod();
-  // The default contact law (1e4 N/m: a knot pulled at 3 N sinks into itself by well under a
-  // millimetre) with friction 0.3 and a 2.5 mm speculative margin.
+  // The default contact law (1e4 N/m: a knot pulled at 3 N sinks into itself by about a millimetre)
+  // and speculative margin, with friction 0.3.
   static bullet::BulletRopeSettings defaultBridge();
   static KnotSceneSettings gravity();  // kGravity, with a heavy cord (0.3 kg/m) whose weight ties the knot
 };

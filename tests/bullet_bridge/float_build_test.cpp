@@ -41,7 +41,7 @@ struct World {
   ~World() { world.removeRigidBody(box.get()); }
 };
 
-RodSettings rope(bool gravity) {
+RodSettings rope(bool gravity, bool adaptive = true) {
   RodSettings rod;
   rod.radius = 0.01;
   rod.youngsModulus = 2.0e8;
@@ -51,7 +51,7 @@ RodSettings rope(bool gravity) {
   rod.restLength = 1.0;
   if (!gravity) {
     rod.gravity = Vec3::Zero();
-    rod.adaptive = false;  // knot removal changes the rope's momentum (see rope_world_test.cpp)
+    rod.adaptive = adaptive;
   }
   return rod;
 }
@@ -67,35 +67,53 @@ TEST(FloatBuildScenario, RopeDroppedOntoBoxComesToRest) {
     ASSERT_TRUE(object.lastStep().ok);
     if (i >= 480) resting = std::max(resting, object.lastStep().maxPenetration);
   }
-  EXPECT_LT(resting, 0.001);
+  // The README's figure: 1.8 um resting penetration with 4 control points (measured 1.77e-6 m in
+  // double, 1.78e-6 m in float; the rope coarsened from 16 to 4 control points, 8 contact samples).
+  EXPECT_LT(resting, 5e-6);
   const Rod& rod = object.rod();
+  EXPECT_EQ(rod.controlPointCount(), 4);
+  double worstHeight = 0.0;
   for (int i = 0; i <= 20; ++i) {
     const double s = rod.beginParameter() + (rod.endParameter() - rod.beginParameter()) * i / 20.0;
-    EXPECT_NEAR(rod.position(std::min(s, rod.endParameter())).y(), 0.21, 0.001);
+    worstHeight = std::max(worstHeight, std::abs(rod.position(std::min(s, rod.endParameter())).y() - 0.21));
   }
-  std::printf("btScalar %zu bytes: resting penetration %.3g m\n", sizeof(btScalar), resting);
+  EXPECT_LT(worstHeight, 5e-6);  // on the top face (y = 0.2) one radius up: measured 1.77e-6 m off
+  std::printf("btScalar %zu bytes: resting penetration %.3g m, %d control points, %d contacts\n", sizeof(btScalar), resting,
+              rod.controlPointCount(), object.lastStep().contacts);
 }
 
+// With adaptivity on (the default) each knot removal may change the rope's momentum by up to its mass
+// times removalVelocityErrorBound; the drift is bounded by that sum plus round-off.
 TEST(FloatBuildScenario, RopeAndFreeBoxConserveMomentum) {
-  World w(0.0, 2.0);
-  RopeWorld ropes(w.world);
-  RopeObject object(Rod::fromSegment(rope(false), Vec3(-0.5, 0.5, 0), Vec3(0.5, 0.5, 0)));
-  object.rod().setVelocities(PointList(static_cast<std::size_t>(object.rod().controlPointCount()), Vec3(0, -3, 0)));
-  ropes.addRope(object);
-  auto total = [&]() -> Vec3 {
-    const btVector3 v = w.box->getLinearVelocity();
-    return object.rod().momentum() + 2.0 * Vec3(v.x(), v.y(), v.z());
-  };
-  const Vec3 initial = total();
-  double worst = 0.0;
-  for (int i = 0; i < 240; ++i) {
-    w.world.stepSimulation(btScalar(kStep), 1, btScalar(kStep));
-    worst = std::max(worst, (total() - initial).norm() / initial.norm());
+  for (const bool adaptive : {false, true}) {
+    World w(0.0, 2.0);
+    RopeWorld ropes(w.world);
+    const RodSettings settings = rope(false, adaptive);
+    RopeObject object(Rod::fromSegment(settings, Vec3(-0.5, 0.5, 0), Vec3(0.5, 0.5, 0)));
+    object.rod().setVelocities(PointList(static_cast<std::size_t>(object.rod().controlPointCount()), Vec3(0, -3, 0)));
+    ropes.addRope(object);
+    auto total = [&]() -> Vec3 {
+      const btVector3 v = w.box->getLinearVelocity();
+      return object.rod().momentum() + 2.0 * Vec3(v.x(), v.y(), v.z());
+    };
+    const Vec3 initial = total();
+    double worst = 0.0, removalBound = 0.0;
+    int removals = 0;
+    for (int i = 0; i < 240; ++i) {
+      w.world.stepSimulation(btScalar(kStep), 1, btScalar(kStep));
+      removals += object.lastStep().removals;
+      removalBound += object.lastStep().removals * object.rod().mass() * settings.removalVelocityErrorBound;
+      worst = std::max(worst, (total() - initial).norm() / initial.norm());
+    }
+    EXPECT_LT(w.box->getLinearVelocity().y(), -0.1);  // the rope pushed it
+    // Measured in double: 3.9e-15 relative with adaptivity off, 6.1e-14 with it on (12 removals, of
+    // knots the uniformly moving parts do not need). Float Bullet rounds the box's velocity to ~1e-7
+    // relative per impulse: measured 3.9e-6 (off) and 1.1e-7 (on).
+    const double roundOff = sizeof(btScalar) == sizeof(double) ? 1e-14 : 1e-5;
+    EXPECT_LT(worst, roundOff + removalBound / initial.norm()) << "adaptive " << adaptive;
+    std::printf("btScalar %zu bytes, adaptive %d: momentum drift %.3g, %d removals (removal bound %.3g)\n",
+                sizeof(btScalar), adaptive, worst, removals, removalBound / initial.norm());
   }
-  EXPECT_LT(w.box->getLinearVelocity().y(), -0.1);  // the rope pushed it
-  // Exact in double; float Bullet rounds the box's velocity to ~1e-7 relative per impulse.
-  EXPECT_LT(worst, sizeof(btScalar) == sizeof(double) ? 1e-9 : 1e-4);
-  std::printf("btScalar %zu bytes: momentum drift %.3g\n", sizeof(btScalar), worst);
 }
 
 TEST(FloatBuildScenario, RopeDroppedAcrossAnotherRestsOnIt) {
@@ -114,11 +132,13 @@ TEST(FloatBuildScenario, RopeDroppedAcrossAnotherRestsOnIt) {
     worst = std::max(worst, ropes.lastReport().maxSelfOverlap());
     touching += upper.lastStep().ropeContacts > 0 ? 1 : 0;
   }
-  EXPECT_LT(worst, 0.2 * 2.0 * r);
+  // Measured 0.41 mm (2 % of the diameter) in both precisions.
+  EXPECT_LT(worst, 1e-3);
   EXPECT_GT(touching, 100);
   // Resting across the lower rope: its middle one diameter above the lower rope's centre line.
   const Rod& rod = upper.rod();
-  EXPECT_NEAR(rod.position(0.5 * (rod.beginParameter() + rod.endParameter())).y(), 0.2 + 3.0 * r, 0.15 * 2.0 * r);
+  // Measured 0.17 mm low (the resting overlap under the upper rope's weight).
+  EXPECT_NEAR(rod.position(0.5 * (rod.beginParameter() + rod.endParameter())).y(), 0.2 + 3.0 * r, 5e-4);
   std::printf("btScalar %zu bytes: rope-rope overlap %.3g m\n", sizeof(btScalar), worst);
 }
 

@@ -98,12 +98,21 @@ TEST(RopeRopeContactScenario, FreeRopesCollidingConserveLinearMomentum) {
   CrossingRopes scene(0.01, 2.0, Vec3::Zero(), false);
   const auto momentum = [&scene]() -> Vec3 { return scene.lower->rod().momentum() + scene.upper->rod().momentum(); };
   const Vec3 initial = momentum();
-  int contactSteps = 0;
+  int contactSteps = 0, removals = 0;
+  double worst = 0.0;
   for (int i = 0; i < 120; ++i) {
     step(scene.physics);
     if (scene.upper->lastStep().ropeContacts > 0) ++contactSteps;
-    ASSERT_LT((momentum() - initial).norm(), 1e-12 * initial.norm()) << "step " << i;
+    removals += scene.upper->lastStep().removals + scene.lower->lastStep().removals;
+    worst = std::max(worst, (momentum() - initial).norm() / initial.norm());
   }
+  // Default adaptivity: measured 3.5e-13 relative with 24 knot removals (of knots the straight,
+  // uniformly moving parts no longer need, which the removal's velocity check finds exact). The
+  // README's figure is 1e-12.
+  EXPECT_GT(removals, 0);
+  EXPECT_LT(worst, 1e-12);
+  std::printf("free ropes: worst relative momentum drift %.3g, %d removals, %d contact steps\n", worst, removals,
+              contactSteps);
   EXPECT_GT(contactSteps, 3);
   // The impact moved the lower rope: momentum really went across.
   EXPECT_GT(scene.lower->rod().momentum().norm(), 0.2 * initial.norm());

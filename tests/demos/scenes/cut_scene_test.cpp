@@ -44,13 +44,16 @@ TEST(CutScene, CutRopeDropsTheBoxAndTheUpperPieceSwingsOnFromItsPin) {
   ASSERT_GT(t2, t1);
   const btVector3 acceleration = (v2 - v1) / static_cast<btScalar>(t2 - t1);
   ::testing::Test::RecordProperty("box_acceleration_y", std::to_string(static_cast<double>(acceleration.y())));
-  // Free fall: the lower piece (5 g) hangs on a 2 kg box and adds no drag.
-  EXPECT_NEAR(static_cast<double>(acceleration.y()), -g, 0.01 * g);
-  EXPECT_NEAR(static_cast<double>(acceleration.x()), 0.0, 0.01 * g);
-  EXPECT_NEAR(static_cast<double>(acceleration.z()), 0.0, 0.01 * g);
-  // The upper piece never leaves its pin and keeps swinging (cut near the end of a swing, its free end
-  // swings back towards the vertical by well over 5 cm in 0.4 s).
-  EXPECT_LT(worstPinGap, 1e-9);
+  // Free fall: the lower piece (5 g) hangs on a 2 kg box; what it adds is the drag of its mass
+  // damping (0.5/s on 5 g at about 2 m/s: ~0.03 % of g). Measured: a_y = -9.80662 m/s^2 (0.034 % short
+  // of g, the README's figure), a_x = 1.3e-3 m/s^2 (0.013 % of g: the lower piece's pull and drag
+  // on the box, which still moves sideways from the swing), a_z = 0.
+  EXPECT_NEAR(static_cast<double>(acceleration.y()), -g, 1e-3 * g);
+  EXPECT_NEAR(static_cast<double>(acceleration.x()), 0.0, 5e-4 * g);
+  EXPECT_NEAR(static_cast<double>(acceleration.z()), 0.0, 1e-12 * g);
+  // The upper piece never leaves its pin (measured 4e-17 m) and keeps swinging (cut near the end of a
+  // swing, its free end swings back towards the vertical by well over 5 cm in 0.4 s).
+  EXPECT_LT(worstPinGap, 1e-12);
   EXPECT_GT(std::abs(freeEndX() - freeEndAtCut), 0.05);
   // The pieces are two ropes: own capsules in the broadphase, no contact across the cut.
   ASSERT_NE(scene.lower(), nullptr);

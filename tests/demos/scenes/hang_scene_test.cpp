@@ -11,13 +11,15 @@ TEST(HangScene, SettlesToTheAnalyticCatenary) {
   HangScene scene(HangSceneSettings{});
   const int steps = static_cast<int>(10.0 / scene.timeStep());
   for (int i = 0; i < steps; ++i) scene.step();
-  // Slack ratio 1.25 over 1 m: the inextensible catenary sags 0.3318 m; this rope stretches by
-  // well under a percent, so the sag must match within 1%.
+  // Slack ratio 1.25 over 1 m: the inextensible catenary sags 0.3318 m. This rope stretches by well
+  // under a percent but has the bending stiffness of a solid rod (EI = 1.6 N m^2), which the catenary
+  // lacks: measured -0.50 % (8 control points); bound 2x. (rod_catenary_test checks the EI = 0 rope
+  // against the exact elastic catenary at 0.05 %.)
   EXPECT_NEAR(scene.analyticSag(), 0.33180, 5e-5);
   EXPECT_NEAR(scene.sag() / scene.analyticSag(), 1.0, 0.01);
   EXPECT_LE(scene.rod().controlPointCount(), 16);
   // At rest: the pins hold and the rope has stopped swinging.
-  EXPECT_LT(scene.rod().kineticEnergy(), 1e-6);
+  EXPECT_LT(scene.rod().kineticEnergy(), 1e-20);  // measured 7e-30 J
   EXPECT_NEAR(scene.rod().position(scene.rod().beginParameter()).x(), -0.5, 1e-9);
   EXPECT_NEAR(scene.rod().position(scene.rod().endParameter()).x(), 0.5, 1e-9);
 }

@@ -26,7 +26,7 @@ TEST(PileScene, DroppedRopePilesUpWithoutPassingThroughItselfAndComesToRest) {
   PileScene scene(PileSceneSettings{});
   const Rod& rod = scene.rope().rod();
   const double diameter = 2.0 * rod.settings().radius;
-  double worstOverlap = 0.0;
+  double worstOverlap = 0.0, worstPenetration = 0.0;
   int maxSelfContacts = 0;
   Vec3 meanAt5 = Vec3::Zero();
   double heightAt5 = 0.0;
@@ -36,8 +36,10 @@ TEST(PileScene, DroppedRopePilesUpWithoutPassingThroughItselfAndComesToRest) {
   for (int i = 1; i <= steps; ++i) {
     const StepMeasurements m = scene.step();
     worstOverlap = std::max(worstOverlap, m.maxSelfOverlap.value_or(0.0));
-    ASSERT_LE(m.maxSelfOverlap.value_or(0.0), 0.2 * diameter) << "t = " << scene.time();
+    // Measured: at most 0.916 mm (9 % of the diameter); bound 1.4 mm.
+    ASSERT_LE(m.maxSelfOverlap.value_or(0.0), 0.14 * diameter) << "t = " << scene.time();
     maxSelfContacts = std::max(maxSelfContacts, scene.rope().lastStep().ropeContacts);
+    worstPenetration = std::max(worstPenetration, scene.rope().lastStep().maxPenetration);
     if (i == static_cast<int>(std::lround(5.0 / scene.timeStep()))) {
       meanAt5 = centreLineMean(rod);
       heightAt5 = scene.heapHeight();
@@ -49,23 +51,32 @@ TEST(PileScene, DroppedRopePilesUpWithoutPassingThroughItselfAndComesToRest) {
   }
   const double meanSpeed = speedSum / speedSamples;
   const double drift = (centreLineMean(rod) - meanAt5).norm();
+  const double restingPenetration = scene.rope().lastStep().maxPenetration;
   ::testing::Test::RecordProperty("worst_overlap_mm", std::to_string(worstOverlap * 1e3));
   ::testing::Test::RecordProperty("max_self_contacts", std::to_string(maxSelfContacts));
   ::testing::Test::RecordProperty("heap_height_m", std::to_string(scene.heapHeight()));
   ::testing::Test::RecordProperty("rms_speed_after_5s_m_per_s", std::to_string(meanSpeed));
   ::testing::Test::RecordProperty("centre_drift_5_to_5.5s_m", std::to_string(drift));
+  ::testing::Test::RecordProperty("worst_ground_penetration_m", std::to_string(worstPenetration));
+  std::printf("pile: overlap <= %.3f mm, %d self-contacts at most, heap %.4f m high (%.4f m at 5 s), centre drift "
+              "%.3f mm in 0.5 s, rms speed %.2f mm/s, ground penetration %.3f mm at worst, %.3f mm at the end\n",
+              worstOverlap * 1e3, maxSelfContacts, scene.heapHeight(), heightAt5, drift * 1e3, meanSpeed * 1e3,
+              worstPenetration * 1e3, restingPenetration * 1e3);
   // A heap, not a flat coil: turns rest on turns (the centre line of the top layer at least one
-  // diameter above the bottom one) with many self-contacts at once.
+  // diameter above the bottom one) with many self-contacts at once (measured: 2.6 cm high, 30
+  // self-contacts at most).
   EXPECT_GT(scene.heapHeight(), rod.settings().radius + diameter);
   EXPECT_LT(scene.heapHeight(), 0.1);
-  EXPECT_GE(maxSelfContacts, 10);
-  // At rest after 5 s: the heap neither moves nor sinks (centre drift and height change under 0.5 mm
-  // in half a second), and what is left is a jitter of under 1.5 cm/s rms.
+  EXPECT_GE(maxSelfContacts, 25);
+  // At rest after 5 s: the heap neither moves nor sinks (measured: centre drift 0.41 mm and height
+  // change 0.03 mm in half a second), and what is left is a jitter (measured rms 4.2 mm/s, bound 2x).
   EXPECT_LT(drift, 5e-4);
-  EXPECT_NEAR(scene.heapHeight(), heightAt5, 5e-4);
-  EXPECT_LT(meanSpeed, 0.015);
-  // Never pushed into the ground by more than a fifth of the diameter either (at impact included).
-  EXPECT_LT(scene.rope().lastStep().maxPenetration, 0.2 * diameter);
+  EXPECT_NEAR(scene.heapHeight(), heightAt5, 1e-4);
+  EXPECT_LT(meanSpeed, 0.0085);
+  // Pushed into the ground by at most 2.0 mm (measured, at impact: the coil lands at 3.1 m/s, 13 mm per
+  // step) and 0.07 mm at rest; bounds 1.5x and 2x.
+  EXPECT_LT(worstPenetration, 0.3 * diameter);
+  EXPECT_LT(restingPenetration, 1.5e-4);
 }
 
 TEST(PileScene, InitialCoilHasItsTurnsApart) {

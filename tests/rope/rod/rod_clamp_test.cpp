@@ -160,8 +160,8 @@ TEST(RodClamp, SmallDeflectionCantileversMatchEulerBernoulli) {
     EXPECT_NEAR(-weight.tip.y(), 1e-3 / 8.0, 5e-8 * 1e-3 / 8.0) << n;
     EXPECT_NEAR(tip.tip.y(), elastica(1.0, 1.0, 1e-3, 0.0).y, 1e-9 * 1e-3 / 3.0) << n;
     EXPECT_NEAR(weight.tip.y(), elastica(1.0, 1.0, 0.0, 1e-3).y, 1e-9 * 1e-3 / 8.0) << n;
-    EXPECT_LT(tip.worstTangent, 1e-9);
-    EXPECT_LT(weight.worstTangent, 1e-9);
+    EXPECT_LT(tip.worstTangent, 1e-14);
+    EXPECT_LT(weight.worstTangent, 1e-14);
     EXPECT_LT(tip.worstPosition, 1e-12);
   }
 }
@@ -185,7 +185,8 @@ TEST(RodClamp, LargeDeflectionCantileversMatchTheElastica) {
     const Settled adaptive = cantilever(16, true, c.alpha, c.beta, 1.0 / 240, 1e-11);
     ASSERT_TRUE(fixed.ok && adaptive.ok) << c.alpha << " " << c.beta;
     EXPECT_LT((fixed.tip - expected).norm(), 1e-4) << c.alpha << " " << c.beta;
-    EXPECT_LT((adaptive.tip - expected).norm(), 5e-3) << c.alpha << " " << c.beta;
+    // Measured worst over the cases: 4.19e-5 L with 16 fixed control points, 1.03e-3 L adaptive.
+    EXPECT_LT((adaptive.tip - expected).norm(), 2.5e-3) << c.alpha << " " << c.beta;
     EXPECT_LT(adaptive.controlPoints, 16);
     worstFixed = std::max(worstFixed, (fixed.tip - expected).norm());
     worstAdaptive = std::max(worstAdaptive, (adaptive.tip - expected).norm());
@@ -193,7 +194,7 @@ TEST(RodClamp, LargeDeflectionCantileversMatchTheElastica) {
     EXPECT_LT(fixed.worstPosition, 1e-12);
     EXPECT_LT(adaptive.worstPosition, 1e-12);
   }
-  EXPECT_LT(worstTangent, 1e-9);
+  EXPECT_LT(worstTangent, 2e-15);  // measured 6.8e-16 (the README's 1e-15)
   RecordProperty("worst_tip_error_fixed_16_over_L", formatValue(worstFixed));
   RecordProperty("worst_tip_error_adaptive_over_L", formatValue(worstAdaptive));
   RecordProperty("worst_clamp_tangent_error", formatValue(worstTangent));
@@ -219,6 +220,39 @@ MovingClamp interiorClampAt(int step) {
           Vec3(std::cos(turn), std::sin(turn), 0.2 * std::sin(2 * t))};
 }
 
+// Convergence under refinement: the large-deflection tip error against the elastica at 5, 10 and 20
+// fixed control points. The rope is made 10^4 times stiffer in stretching (same EI) so that its
+// stretch (3e-5 at the default E) does not hide the discretisation error; the settled state of the
+// implicit step does not depend on h, so only the resolution is refined.
+TEST(RodClamp, LargeDeflectionTipErrorFallsAtHighOrderUnderRefinement) {
+  for (const LargeCase& c : {LargeCase{5, 0}, LargeCase{0, 5}}) {
+    const ElasticaTip reference = elastica(1.0, 1.0, c.alpha, c.beta);
+    const Vec3 expected(reference.x, reference.y, 0.0);
+    double errors[4];
+    const int counts[4] = {5, 10, 20, 40};
+    for (int k = 0; k < 4; ++k) {
+      RodSettings settings = cantileverSettings(counts[k], false);
+      const double ei = settings.effectiveBendingStiffness();
+      settings.bendingStiffness = ei;
+      settings.youngsModulus *= 1e4;
+      settings.gravity = Vec3(0.0, -c.beta * ei / settings.effectiveLinearDensity(), 0.0);
+      Rod rod = Rod::fromSegment(settings, Vec3::Zero(), Vec3(1, 0, 0));
+      rod.clamp(0.0, Vec3::Zero(), Vec3::UnitX());
+      const Settled settled = settle(rod, c.alpha * ei, 1.0 / 240, 1e-13);
+      ASSERT_TRUE(settled.ok);
+      errors[k] = (settled.tip - expected).norm();
+    }
+    std::printf("[cantilever convergence, P L^2/EI = %g, w L^3/EI = %g] tip error / L at 5, 10, 20, 40 control "
+                "points: %.3e %.3e %.3e %.3e\n", c.alpha, c.beta, errors[0], errors[1], errors[2], errors[3]);
+    // Measured (tip load / weight): 2.7e-2 / 1.9e-2, 9.9e-5 / 9.2e-5, 8.7e-7 / 5.5e-7, 1.3e-7 / 3.8e-8:
+    // ratios over 100 for the first two doublings, then the settling tolerance and the residual
+    // stretch (3e-9) are reached. Bounds: fourth order (16) for the first two, and below 3e-7 at 40.
+    EXPECT_GT(errors[0] / errors[1], 16.0);
+    EXPECT_GT(errors[1] / errors[2], 16.0);
+    EXPECT_LT(errors[3], 3e-7);
+  }
+}
+
 TEST(RodClamp, MovingClampsHoldPointAndTangentAtEveryStep) {
   Rod rod = swingingRope();
   const int middle = rod.clamp(0.4, Vec3(0.4, 0, 0), Vec3(1, 0, 0));
@@ -239,7 +273,7 @@ TEST(RodClamp, MovingClampsHoldPointAndTangentAtEveryStep) {
     worstTangent = std::max(worstTangent, rod.tangent(1.0).cross(Vec3::UnitX()).norm());
   }
   EXPECT_LT(worstPoint, 1e-12);
-  EXPECT_LT(worstTangent, 1e-9);
+  EXPECT_LT(worstTangent, 1e-14);  // measured 2.9e-15
   RecordProperty("worst_point_error_m", formatValue(worstPoint));
   RecordProperty("worst_tangent_error", formatValue(worstTangent));
   // The piece between the two welds is bent (the interior direction turned by up to 30°).

@@ -1,17 +1,21 @@
-// Scenario: energy behaviour of the linearised backward-Euler step (docs/method.md §8).
+// Scenario: energy and momentum behaviour of the linearised backward-Euler step (docs/method.md §8),
+// with adaptivity off (the step alone) and on (the default: knots inserted and removed while it runs).
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "rope/rod/rod.h"
+#include "rope/spline/gauss_legendre.h"
 
 namespace rope {
 namespace {
 
 // A small swinging rope, pinned at one end, released from horizontal: 6 control points so that
-// 100,000 steps take well under a second. Adaptivity is off: a knot removal may change the energy by
-// its (bounded) shape error, which is not what this test is about.
-Rod swingingRope(double massDamping) {
+// 100,000 steps take well under a second. Adaptivity is off unless asked for: a knot removal may
+// change the energy by its (bounded) shape error, which the adaptive test allows for.
+Rod swingingRope(double massDamping, bool adaptive = false) {
   RodSettings settings;
   settings.restLength = 1.0;
   settings.linearDensity = 0.1;
@@ -20,7 +24,7 @@ Rod swingingRope(double massDamping) {
   settings.massDamping = massDamping;
   settings.initialControlPoints = 6;
   settings.minControlPoints = 6;
-  settings.adaptive = false;
+  settings.adaptive = adaptive;
   Rod rod = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(1, 0, 0));
   rod.pin(0.0);
   return rod;
@@ -62,6 +66,135 @@ TEST(RodEnergy, WithDampingEnergyDecaysToTheHangingMinimum) {
   const double minimum = -0.1 * 9.81 * 0.5;
   EXPECT_NEAR(previous, minimum, 1e-3 * std::abs(minimum));
   EXPECT_LT(rod.kineticEnergy(), 1e-8);
+}
+
+// ---- with the default adaptivity ----
+
+// Angular momentum about the origin, integral of mu C(s) x V(s) l0'(s) ds, kg m^2/s: exact for a
+// straight rest curve (l0' = 1; the integrand is a polynomial of degree 2d per span, 5 Gauss points).
+Vec3 angularMomentum(const Rod& rod) {
+  const GaussRule rule = gaussLegendre(5);
+  const std::vector<double>& knots = rod.knots().values();
+  const double mu = rod.settings().effectiveLinearDensity();
+  Vec3 sum = Vec3::Zero();
+  for (std::size_t j = 0; j + 1 < knots.size(); ++j) {
+    const double a = std::max(knots[j], rod.beginParameter()), b = std::min(knots[j + 1], rod.endParameter());
+    if (b <= a) continue;
+    for (int q = 0; q < rule.count; ++q) {
+      const double s = 0.5 * (a + b) + 0.5 * (b - a) * rule.nodes[q];
+      sum += 0.5 * (b - a) * rule.weights[q] * mu * rod.restMetric(s) * rod.position(s).cross(rod.velocity(s));
+    }
+  }
+  return sum;
+}
+
+// A free 1 m rope (no gravity, no damping) spinning at `spin` rad/s about z through its middle, with
+// a transverse wave of `wave` m/s on top and a drift of 0.1 m/s along x. Default adaptivity.
+Rod spinningRope(double spin, double wave) {
+  RodSettings settings;
+  settings.restLength = 1.0;
+  settings.linearDensity = 0.1;
+  settings.youngsModulus = 1e8;
+  settings.radius = 0.003;
+  settings.gravity = Vec3::Zero();
+  settings.initialControlPoints = 8;
+  Rod rod = Rod::fromSegment(settings, Vec3(-0.5, 0, 0), Vec3(0.5, 0, 0));
+  PointList velocities;
+  for (const Vec3& p : rod.controlPoints()) {
+    velocities.push_back(Vec3(0, 0, spin).cross(p) + Vec3(0.1, 0, wave * std::sin(7.0 * p.x())));
+  }
+  rod.setVelocities(velocities);
+  return rod;
+}
+
+// Internal forces and knot insertion conserve linear momentum exactly; a knot removal may change the
+// velocity field by up to its reported error, so the momentum by at most the rope's mass times that
+// per removal. Checked step by step on a whipping rope for which adaptivity inserts and removes knots.
+TEST(RodEnergy, WithAdaptivityMomentumChangesOnlyByWhatKnotRemovalsMayChange) {
+  Rod rod = spinningRope(2.0, 4.0);
+  ASSERT_TRUE(rod.settings().adaptive);  // the default
+  const Vec3 initial = rod.momentum();
+  int insertions = 0, removals = 0;
+  double worst = 0.0, allowance = 0.0;
+  for (int i = 0; i < 1200; ++i) {
+    const Vec3 before = rod.momentum();
+    const StepReport report = rod.step(1.0 / 240);
+    ASSERT_TRUE(report.ok) << i;
+    insertions += report.insertions;
+    removals += report.removals;
+    const double removalBound = report.removals * rod.mass() * report.maxRemovalVelocityError;
+    allowance += removalBound;
+    // Round-off: measured up to 8e-13 relative in a step without removals (an insertion's sums).
+    EXPECT_LE((rod.momentum() - before).norm(), removalBound + 1e-11 * initial.norm()) << "step " << i;
+    worst = std::max(worst, (rod.momentum() - initial).norm());
+  }
+  EXPECT_GT(insertions, 0);
+  EXPECT_GT(removals, 0);
+  // Measured: drift 2.6e-5 kg m/s (0.26 % of |p|) against the removals' allowance 5.4e-4 kg m/s.
+  EXPECT_LE(worst, allowance + 1e-11 * initial.norm());
+  std::printf("[momentum, adaptive] |p0| %.4g kg m/s, worst drift %.3g, removal allowance %.3g, %d insertions, %d "
+              "removals\n", initial.norm(), worst, allowance, insertions, removals);
+}
+
+// Angular momentum is not a conserved quantity of the linearised backward-Euler step: like its energy,
+// the step dissipates it, at first order in h. A rope spinning rigidly at 2 rad/s (no knot changes
+// needed) keeps its linear momentum to round-off, never gains angular momentum, and loses it over
+// 1 s as: measured 5.96 % at h = 1/240 s, 1.41 % at 1/480, 0.489 % at 1/960 and 0.217 % at 1/1920
+// (ratios 4.2, 2.9, 2.25: tending to 2, first order).
+TEST(RodEnergy, SpinningRopeLosesAngularMomentumAtFirstOrderInTheStep) {
+  double losses[3] = {0.0, 0.0, 0.0};
+  const double steps[3] = {1.0 / 240, 1.0 / 960, 1.0 / 1920};
+  for (int k = 0; k < 3; ++k) {
+    Rod rod = spinningRope(2.0, 0.0);
+    const Vec3 p0 = rod.momentum();
+    const Vec3 l0 = angularMomentum(rod);
+    double previous = l0.norm();
+    const int count = static_cast<int>(std::lround(1.0 / steps[k]));
+    for (int i = 0; i < count; ++i) {
+      ASSERT_TRUE(rod.step(steps[k]).ok);
+      const double l = angularMomentum(rod).norm();
+      ASSERT_LE(l, previous * (1.0 + 1e-12)) << "h = " << steps[k] << ", step " << i;
+      previous = l;
+    }
+    EXPECT_LT((rod.momentum() - p0).norm(), 1e-11 * p0.norm());  // measured up to 1.7e-12 (1920 steps)
+    losses[k] = (angularMomentum(rod) - l0).norm() / l0.norm();
+  }
+  std::printf("[angular momentum] loss over 1 s: %.4g (1/240 s), %.4g (1/960 s), %.4g (1/1920 s)\n", losses[0],
+              losses[1], losses[2]);
+  EXPECT_LT(losses[0], 0.07);  // the step's dissipation at the default step stays as measured
+  EXPECT_GT(losses[1] / losses[2], 1.8);  // first order: halving h halves the loss
+  EXPECT_LT(losses[1] / losses[2], 2.6);
+}
+
+// Open (label `open`, issue 20): with the default adaptivity the total energy of an undamped rope
+// must not grow either, beyond what a knot removal may change (its shape and velocity errors). It
+// does: measured +0.071 J (14 % of m g L / 2) in the step at 0.27 s, where adaptivity inserted two
+// knots and removed none. Knot insertion keeps the curve and the velocity field exactly, but the
+// default reduced stretching rule (StretchingQuadrature::kLockingFree) samples the strain at one point
+// per span, so a strain that varies inside a span stores no energy until a new knot samples it: the
+// stretching energy went from 2.3e-4 J to 7.1e-2 J. With kExact the same insertion keeps it.
+TEST(RodEnergy, WithAdaptivityTotalEnergyNeverGrowsWithoutDamping) {
+  Rod rod = swingingRope(0.0, true);
+  const double g = rod.settings().gravity.norm();
+  double previous = rod.totalEnergy();
+  int insertions = 0, removals = 0;
+  for (int i = 0; i < 240 * 20; ++i) {
+    double fastest = 0.0;
+    for (int k = 0; k <= 50; ++k) fastest = std::max(fastest, rod.velocity(rod.endParameter() * k / 50).norm());
+    const StepReport report = rod.step(1.0 / 240);
+    ASSERT_TRUE(report.ok) << i;
+    insertions += report.insertions;
+    removals += report.removals;
+    // What removals may change: kinetic energy by m (v dv + dv^2 / 2), gravity energy by m g dx.
+    const double dv = report.maxRemovalVelocityError, dx = report.maxRemovalError;
+    const double allowance = report.removals * rod.mass() * ((fastest + 1.0) * dv + 0.5 * dv * dv + g * dx);
+    const double energy = rod.totalEnergy();
+    EXPECT_LE(energy, previous + allowance + 1e-12 * (std::abs(rod.gravityEnergy()) + rod.kineticEnergy() + 1.0))
+        << "step " << i << ": " << report.insertions << " insertions, " << report.removals << " removals";
+    previous = energy;
+  }
+  EXPECT_GT(insertions, 0);
+  EXPECT_GT(removals, 0);
 }
 
 }  // namespace

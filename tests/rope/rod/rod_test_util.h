@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -53,6 +54,37 @@ inline double lowestY(const Rod& rod, int samples = 4000) {
     lowest = std::min(lowest, rod.position(s).y());
   }
   return lowest;
+}
+
+// Strain of the rod's Green–Lagrange law ([A] eq. 11: E = (EA/8) int (gamma^2 - 1)^2, so the tension
+// is T = EA eps (1 + eps)(1 + eps/2)) under tension T (N), by Newton's method from T / EA.
+inline double greenLagrangeStrain(double tension, double axialStiffness) {
+  const double target = tension / axialStiffness;
+  double eps = target;
+  for (int i = 0; i < 50; ++i) {
+    const double f = eps * (1.0 + eps) * (1.0 + 0.5 * eps) - target;
+    const double df = 1.0 + 3.0 * eps + 1.5 * eps * eps;
+    eps -= f / df;
+  }
+  return eps;
+}
+
+// Static strain of a rope of rest length L (m) and weight w (N/m) hanging from its top with a load W
+// (N) at its bottom, exact for the Green–Lagrange law: the tension at rest arclength p above the load
+// is W + w p. `mean` is the rope's relative elongation (length / L - 1, the integral of the strain by
+// Simpson's rule, error ~1e-16 here), `top` the strain where the tension is largest (W + w L).
+struct HangingStrain {
+  double mean = 0.0;
+  double top = 0.0;
+};
+inline HangingStrain hangingStrain(double load, double weightPerLength, double length, double axialStiffness) {
+  const int n = 1000;  // even
+  double sum = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    const double weight = (i == 0 || i == n) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+    sum += weight * greenLagrangeStrain(load + weightPerLength * length * i / n, axialStiffness);
+  }
+  return {sum / (3.0 * n), greenLagrangeStrain(load + weightPerLength * length, axialStiffness)};
 }
 
 }  // namespace rope::test

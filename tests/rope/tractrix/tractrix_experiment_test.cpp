@@ -129,7 +129,7 @@ TEST(TractrixExperiment, HeavyLoopShowsTheLengthRatchet) {
   // A path that wraps the 5 m object around a 1.5 m loop. Subdivision never changes the curve but
   // shortens the polygon, and the tractrix then keeps that shorter polygon: each bend that gets
   // subdivided locks in part of the curve's shortfall. With 6 initial sides this path loses more
-  // than [B]'s 5%; the bounds here are regression bounds on the measured behaviour.
+  // than [B]'s 5%; the bounds here hold the measured behaviour of the method as published.
   auto target = [](int k) { return kLoop.at(0.5 * k); };
   const PathRun sd = runPath(paperSettings(TractrixVariant::kSplineSubdivide), target, 52);
   const PathRun mrg = runPath(paperSettings(TractrixVariant::kSplineSubdivideMerge), target, 52);
@@ -141,8 +141,8 @@ TEST(TractrixExperiment, HeavyLoopShowsTheLengthRatchet) {
   EXPECT_LT(mrg.maxCount, sd.maxCount);
   EXPECT_GT(mrg.maxCount, 12);
   EXPECT_EQ(mrg.counts.back(), 7);  // merging brings it back to the initial resolution
-  EXPECT_LT(sd.maxError, 0.20);
-  EXPECT_LT(mrg.maxError, 0.20);
+  EXPECT_LT(sd.maxError, 0.13);   // measured 11.84 %
+  EXPECT_LT(mrg.maxError, 0.18);  // measured 16.82 %
   EXPECT_LT(mrg.maxMergeRelative, 0.018);
 }
 
@@ -234,23 +234,24 @@ namespace rope {
 namespace {
 
 // Issue 7's acceptance item "for random paths, a tighter threshold never gives a larger maximum
-// error" does not hold for the length error itself (curve length against the initial length): on the
-// same 24 random walks and threshold ladder as above, the maximum |length error| over 52 steps rises
-// on a tighter rung in many cases (measured: 43 of 120 rung pairs for TRX_SD, 64 of 120 for
-// TRX_SD_MRG). Subdivision does not change the curve but shortens the polygon that the tractrix then
-// keeps (the ratchet of HeavyLoopShowsTheLengthRatchet), so a tighter threshold that subdivides
-// earlier can lock in more shortfall; with merging, tighter merging angles also merge later and
-// differently. What does hold is the per-step polygon-curve gap (the test above). This test records
-// the table and fails if the non-monotone behaviour disappears, so that the issue's claim is only
-// asserted once it is true.
-TEST(TractrixExperiment, MaxLengthErrorIsNotMonotoneInTheThresholds) {
+// error" does not hold for [B] as published (TractrixLengthCorrection::kNone): on the same 24 random
+// walks and threshold ladder as above, the maximum |length error| over 52 steps rises on a tighter
+// rung in many cases (measured: 43 of 120 rung pairs for TRX_SD, 64 of 120 for TRX_SD_MRG).
+// Subdivision does not change the curve but shortens the polygon that the tractrix then keeps (the
+// ratchet of HeavyLoopShowsTheLengthRatchet), so a tighter threshold that subdivides earlier can lock
+// in more shortfall; with merging, tighter merging angles also merge later and differently. What does
+// hold is the per-step polygon-curve gap (the test above), and, with the default length correction,
+// the claim itself: every rung keeps the length to the solver's tolerance, so no rung is worse than
+// another beyond round-off. The as-published table is printed and recorded, and its worst case held
+// to its measured value.
+TEST(TractrixExperiment, WithTheDefaultCorrectionNoThresholdLosesLength) {
   const double ladder[][2] = {{120, 150}, {130, 155}, {140, 160}, {150, 165}, {160, 170}, {170, 175}};
   for (TractrixVariant variant : {TractrixVariant::kSplineSubdivide, TractrixVariant::kSplineSubdivideMerge}) {
     const char* name = variant == TractrixVariant::kSplineSubdivide ? "TRX_SD" : "TRX_SD_MRG";
     int rises = 0;
-    double largest = 0.0;
+    double largest = 0.0, largestCorrected = 0.0;
     for (unsigned seed = 0; seed < 24; ++seed) {
-      std::printf("%s seed %2u max |length error| %%:", name, seed);
+      std::printf("%s seed %2u max |length error| %% as published:", name, seed);
       double previous = 1.0;
       for (const auto& thresholds : ladder) {
         TractrixSettings settings = paperSettings(variant);
@@ -260,14 +261,21 @@ TEST(TractrixExperiment, MaxLengthErrorIsNotMonotoneInTheThresholds) {
         if (run.maxError > previous) ++rises;
         previous = run.maxError;
         largest = std::max(largest, run.maxError);
+        TractrixSettings corrected = correctedSettings(variant);
+        corrected.setThresholdsDegrees(thresholds[0], thresholds[1]);
+        const PathRun correctedRun = runPath(corrected, randomWalk(seed), 52);
+        EXPECT_LT(correctedRun.maxError, 1.5e-12) << name << " seed " << seed << " at " << thresholds[0] << "°";
+        largestCorrected = std::max(largestCorrected, correctedRun.maxError);
       }
       std::printf("\n");
     }
-    std::printf("%s: a tighter rung gave a larger maximum length error in %d of 120 cases\n", name, rises);
+    std::printf("%s: as published, a tighter rung gave a larger maximum length error in %d of 120 cases (largest "
+                "%.3f %%); corrected, the largest is %.2e\n", name, rises, 100 * largest, largestCorrected);
     RecordProperty(std::string(name) + "_tighter_rung_larger_max_error_cases", rises);
     RecordProperty(std::string(name) + "_largest_max_length_error_percent", std::to_string(100 * largest));
-    EXPECT_GT(rises, 0) << name;
-    EXPECT_LT(largest, 0.2) << name;  // regression bound on the measured worst case (14.4%)
+    RecordProperty(std::string(name) + "_largest_corrected_length_error", formatValue(largestCorrected));
+    // Measured 12.82 % (TRX_SD) and 14.37 % (TRX_SD_MRG): the README's "10-22 % on tight loops".
+    EXPECT_LT(largest, 0.15) << name;
   }
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "bullet_bridge/body_state.h"
 #include "bullet_bridge/find_contacts.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
@@ -141,6 +142,7 @@ int RopeObject::attachToBody(double s, btRigidBody& body, const btVector3& local
   attachment.id = nextAttachmentId_++;
   attachment.s = s;
   attachment.body = &body;
+  attachment.bodyIndexHint = body.getWorldArrayIndex();
   attachment.localPoint = localPoint;
   attachment.settings = settings;
   attachments_.push_back(attachment);
@@ -315,6 +317,7 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
 }
 
 void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
+  requirePositive("h", h);
   contacts_.clear();
   inputs_.clear();
   pending_.clear();
@@ -330,7 +333,7 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
     attachment.lastForce.setZero();
     btRigidBody* body = attachment.body;
     if (body == nullptr || body->getBroadphaseHandle() == nullptr) continue;  // pins act in the rod
-    if (!isFinite(body->getCenterOfMassTransform())) {
+    if (!bodyStateFinite(*body)) {  // a NaN transform, velocity or mass must not poison the rope
       ++lastStep_.skippedBodies;
       continue;
     }
@@ -417,6 +420,7 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
 }
 
 void RopeObject::endSubstep(double h) {
+  requirePositive("h", h);
   using Clock = std::chrono::steady_clock;
   const Clock::time_point commitStart = Clock::now();
   if (lastStep_.ok && rod_.hasTrial()) {

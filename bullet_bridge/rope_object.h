@@ -17,6 +17,7 @@
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "bullet_bridge/attachment.h"
@@ -25,6 +26,7 @@
 #include "bullet_bridge/contact.h"
 #include "bullet_bridge/contact_report.h"
 #include "bullet_bridge/rope_settings.h"
+#include "bullet_bridge/rope_warnings.h"
 #include "rope/rod/rod.h"
 
 namespace rope::bullet {
@@ -84,10 +86,16 @@ class RopeObject {
   // shared to (BulletRopeSettings::contactKnotSpacing).
   const std::vector<RopeContactRecord>& contacts() const { return contacts_; }
   const RopeStepRecord& lastStep() const { return lastStep_; }
+  // What went wrong in this rope's substeps since it was created (rope_warnings.h; a RopeWorld counts
+  // them), and the message of the last exception caught in one of them ("" if none).
+  const RopeWarnings& warnings() const { return warnings_; }
+  const std::string& lastError() const { return lastError_; }
 
   // One substep of h seconds against the candidate bodies (sorted, deterministic order), on its own:
   // beginSubstep then endSubstep. RopeWorld's action calls the two halves itself, after Bullet's
   // collision detection, solver and integration of the substep, with rope-rope contact in between.
+  // Throws InvalidArgument("h", ...) for h not finite and > 0 before changing anything. Called
+  // directly, these may throw; inside a RopeWorld every exception is caught and counted (warnings()).
   void substep(const std::vector<const btCollisionObject*>& candidates, double h);
   // Rope-body contacts and attachments, and the rod's trial step with them (Rod::solveTrial; the
   // rod's state is unchanged). lastStep().ok is false if the trial failed.
@@ -105,6 +113,17 @@ class RopeObject {
   }
   void enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld);
   void leaveWorld();
+  // ---- failure handling inside a RopeWorld substep (rope_object_failures.cpp) ----
+  // Drops the body attachments whose body is no longer among world's collision objects (compared by
+  // pointer, never dereferenced: the body may have been deleted).
+  void dropDepartedAttachments(const btCollisionWorld& world);
+  // The substep is not run (reason: static text); the rope keeps its state.
+  void skipSubstep(const char* reason);
+  // An exception (message) was caught in this rope's substep: drops the trial and the queued loads so
+  // the rope keeps its last good state, and deactivates the substep's contacts.
+  void failSubstep(const char* message);
+  // Adds the substep's outcome to warnings_ (called once per substep, after endSubstep or skipSubstep).
+  void countSubstep();
   int findAttachment(int id) const;
   void gatherContacts(const std::vector<const btCollisionObject*>& candidates, double h);
   // Whether the rope is attached to object within 4 radii of the capsule [s0, s1]: the rope's end sits
@@ -146,6 +165,9 @@ class RopeObject {
   };
   std::vector<ContactInput> inputs_;
   std::vector<Vec3> forceTotals_;  // per contact record: end-of-step force of the last solve, N
+  RopeWarnings warnings_;
+  std::string lastError_;
+  int droppedAttachments_ = 0;  // by dropDepartedAttachments in the current substep
 };
 
 }  // namespace rope::bullet

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <tuple>
 
@@ -22,7 +23,18 @@ namespace rope::bullet {
 class RopeWorld::Action : public btActionInterface {
  public:
   explicit Action(RopeWorld& owner) : owner_(owner) {}
-  void updateAction(btCollisionWorld*, btScalar dt) override { owner_.substep(static_cast<double>(dt)); }
+  // Nothing may leave Bullet's step: each rope's failures are caught around its own calls in
+  // substep(); this catches what is left (an allocation failure, say), drops every rope's pending
+  // trial so that each keeps its last committed state, and counts it.
+  void updateAction(btCollisionWorld*, btScalar dt) override {
+    try {
+      owner_.substep(static_cast<double>(dt));
+    } catch (const std::exception& error) {
+      owner_.recoverFromException(error.what());
+    } catch (...) {
+      owner_.recoverFromException("unknown exception");
+    }
+  }
   void debugDraw(btIDebugDraw* drawer) override {
     if (owner_.debugDraw_ && drawer != nullptr) drawRopes(owner_, *drawer);
   }
@@ -49,7 +61,7 @@ RopeWorld::RopeWorld(btDiscreteDynamicsWorld& world) : world_(world), action_(st
 
 RopeWorld::~RopeWorld() {
   while (!ropes_.empty()) removeRope(*ropes_.back());
-  world_.removeAction(action_.get());
+  if (!worldGone_) world_.removeAction(action_.get());
 }
 
 bool RopeWorld::contains(const RopeObject& rope) const {
@@ -74,6 +86,9 @@ void RopeWorld::addRope(RopeObject& rope) {
 void RopeWorld::removeRope(RopeObject& rope) {
   const auto it = std::find(ropes_.begin(), ropes_.end(), &rope);
   if (it == ropes_.end()) throw InvalidArgument("rope", "not in this world", "must have been added to it");
+  // Bullet's world destructor clears the broadphase handles of the objects still in it: if it ran
+  // already, the world is gone and must not be touched again (rope_world.h, "Ownership").
+  if (rope.proxies().orphaned()) worldGone_ = true;
   rope.leaveWorld();
   rope.worldIndex_ = -1;
   ropes_.erase(it);
@@ -84,6 +99,73 @@ void RopeWorld::removeRope(RopeObject& rope) {
 }
 
 void RopeWorld::substep(double h) {
+  if (!(std::isfinite(h) && h > 0.0)) {
+    skipSubstep(h);
+    return;
+  }
+  findCandidates();
+  report_.substep += 1;
+  report_.timeStep = h;
+  report_.failure = "";
+  report_.contacts.clear();
+  report_.ropes.clear();
+  report_.ropeContacts.clear();
+  report_.ropeContactFailure = "";
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    RopeObject& rope = *ropes_[r];
+    // Bodies removed from the world (perhaps deleted) since the last substep lose their attachments
+    // before anything reads them.
+    rope.dropDepartedAttachments(world_);
+    std::vector<const btCollisionObject*>& list = candidates_[r];
+    // Deterministic order (pointer values are not): by the body's index in the world.
+    std::sort(list.begin(), list.end(), [](const btCollisionObject* a, const btCollisionObject* b) {
+      return a->getWorldArrayIndex() < b->getWorldArrayIndex();
+    });
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    try {
+      rope.beginSubstep(list, h);
+    } catch (const std::exception& error) {
+      rope.failSubstep(error.what());
+    } catch (...) {
+      rope.failSubstep("unknown exception");
+    }
+  }
+
+  solveRopeContacts(h);
+
+  for (RopeObject* rope : ropes_) {
+    try {
+      rope->endSubstep(h);
+    } catch (const std::exception& error) {
+      rope->failSubstep(error.what());
+    } catch (...) {
+      rope->failSubstep("unknown exception");
+    }
+    rope->countSubstep();
+    report_.contacts.insert(report_.contacts.end(), rope->contacts().begin(), rope->contacts().end());
+    report_.ropes.push_back(rope->lastStep());
+  }
+  runCallback();
+}
+
+void RopeWorld::skipSubstep(double h) {
+  ++warnings_.skippedSubsteps;
+  report_.substep += 1;
+  report_.timeStep = h;
+  report_.failure = "the substep's time step is not finite and > 0: no rope stepped";
+  report_.contacts.clear();
+  report_.ropes.clear();
+  report_.ropeContacts.clear();
+  report_.ropeContactFailure = "";
+  for (RopeObject* rope : ropes_) {
+    rope->skipSubstep(report_.failure);
+    rope->countSubstep();
+    report_.ropes.push_back(rope->lastStep());
+  }
+  runCallback();
+}
+
+void RopeWorld::findCandidates() {
   // Candidate bodies per rope from Bullet's pair cache. The cache may still hold pairs whose boxes
   // stopped overlapping (it cleans up lazily), so the overlap is checked again.
   const auto scanStart = std::chrono::steady_clock::now();
@@ -129,32 +211,27 @@ void RopeWorld::substep(double h) {
     if (rope->worldIndex_ < 0) continue;
     candidates_[static_cast<std::size_t>(rope->worldIndex_)].push_back(body);
   }
-
   report_.pairScanSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - scanStart).count();
-  report_.substep += 1;
-  report_.timeStep = h;
-  report_.contacts.clear();
-  report_.ropes.clear();
-  report_.ropeContacts.clear();
-  report_.ropeContactFailure = "";
-  for (std::size_t r = 0; r < ropes_.size(); ++r) {
-    std::vector<const btCollisionObject*>& list = candidates_[r];
-    // Deterministic order (pointer values are not): by the body's index in the world.
-    std::sort(list.begin(), list.end(), [](const btCollisionObject* a, const btCollisionObject* b) {
-      return a->getWorldArrayIndex() < b->getWorldArrayIndex();
-    });
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    ropes_[r]->beginSubstep(list, h);
-  }
+}
 
+void RopeWorld::solveRopeContacts(double h) {
   // Rope-rope and self-contact, coupled into the trials of all ropes at once; pairs in a fixed order
   // (the pair cache's order depends on pointer hashes).
   const auto ropeStart = std::chrono::steady_clock::now();
   std::sort(capsulePairs_.begin(), capsulePairs_.end(), [](const RopeCapsulePair& a, const RopeCapsulePair& b) {
     return std::tie(a.ropeA, a.capsuleA, a.ropeB, a.capsuleB) < std::tie(b.ropeA, b.capsuleA, b.ropeB, b.capsuleB);
   });
-  const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
-  if (ropeContacts < 0) report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
+  try {
+    const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
+    if (ropeContacts < 0) {
+      report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
+      ++warnings_.ropeContactFailures;
+    }
+  } catch (const std::exception& error) {
+    failRopeContacts(error.what());
+  } catch (...) {
+    failRopeContacts("unknown exception");
+  }
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     int active = 0;
     double overlap = 0.0;
@@ -166,13 +243,49 @@ void RopeWorld::substep(double h) {
     ropes_[r]->recordRopeContacts(active, overlap);
   }
   report_.ropeContactSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
+}
 
+void RopeWorld::failRopeContacts(const char* message) {
+  // The coupled solve may have corrected some trials and not others: every rope that still has a
+  // trial drops it and keeps its state this substep.
+  ++warnings_.ropeContactFailures;
+  lastError_ = message;
+  report_.ropeContacts.clear();
+  report_.ropeContactFailure = "an exception was thrown in the rope-rope contact solve; the ropes kept their state";
   for (RopeObject* rope : ropes_) {
-    rope->endSubstep(h);
-    report_.contacts.insert(report_.contacts.end(), rope->contacts().begin(), rope->contacts().end());
-    report_.ropes.push_back(rope->lastStep());
+    if (rope->rod().hasTrial()) rope->failSubstep(message);
   }
-  if (callback_) callback_(report_);
+}
+
+void RopeWorld::runCallback() {
+  if (!callback_) return;
+  try {
+    callback_(report_);
+  } catch (const std::exception& error) {
+    ++warnings_.callbackExceptions;
+    lastError_ = error.what();
+  } catch (...) {
+    ++warnings_.callbackExceptions;
+    lastError_ = "unknown exception";
+  }
+}
+
+void RopeWorld::recoverFromException(const char* message) noexcept {
+  ++warnings_.exceptions;
+  try {
+    lastError_ = message;
+  } catch (...) {
+    // out of memory for the message: the count is what matters
+  }
+  report_.failure = "an exception was thrown in the ropes' substep; the ropes kept their state (RopeWorld::lastError())";
+  for (RopeObject* rope : ropes_) {
+    if (!rope->rod().hasTrial()) continue;
+    try {
+      rope->failSubstep(message);
+    } catch (...) {
+      rope->rod().clearLoads();  // cannot throw: at least the trial is gone
+    }
+  }
 }
 
 }  // namespace rope::bullet

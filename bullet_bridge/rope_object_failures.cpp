@@ -1,0 +1,62 @@
+// RopeObject: what a RopeWorld does when a rope's substep cannot run or goes wrong (rope_warnings.h).
+// Nothing here throws: these run inside Bullet's stepSimulation.
+#include "bullet_bridge/rope_object.h"
+
+#include "bullet_bridge/world_membership.h"
+
+namespace rope::bullet {
+
+void RopeObject::dropDepartedAttachments(const btCollisionWorld& world) {
+  droppedAttachments_ = 0;
+  for (auto it = attachments_.begin(); it != attachments_.end();) {
+    if (it->body == nullptr || isInWorld(world, it->body, it->bodyIndexHint)) {
+      ++it;
+      continue;
+    }
+    it = attachments_.erase(it);  // the body may be freed: only the pointer value was used
+    ++droppedAttachments_;
+    ++warnings_.droppedAttachments;
+  }
+}
+
+void RopeObject::skipSubstep(const char* reason) {
+  rod_.clearLoads();
+  pending_.clear();
+  contacts_.clear();
+  lastStep_ = RopeStepRecord();
+  lastStep_.rope = this;
+  lastStep_.ok = false;
+  lastStep_.failure = reason;
+  lastStep_.controlPoints = rod_.controlPointCount();
+}
+
+void RopeObject::failSubstep(const char* message) {
+  ++warnings_.exceptions;
+  lastError_ = message;
+  // Without a trial nothing is committed (endSubstep takes the failed branch), so the rod keeps the
+  // state it had before the substep. An exception inside the commit itself (adaptivity) leaves the
+  // committed positions with the knot changes made so far, each of them exact.
+  rod_.clearLoads();
+  pending_.clear();
+  for (RopeContactRecord& record : contacts_) {
+    record.active = false;
+    record.force.setZero();
+  }
+  lastStep_.contacts = 0;
+  lastStep_.ok = false;
+  lastStep_.failure = "an exception was thrown in the rope's substep; it kept its state (RopeObject::lastError())";
+}
+
+void RopeObject::countSubstep() {
+  lastStep_.droppedAttachments = droppedAttachments_;
+  droppedAttachments_ = 0;
+  warnings_.skippedBodies += lastStep_.skippedBodies;
+  if (lastStep_.ok) {
+    warnings_.consecutiveFailures = 0;
+  } else {
+    ++warnings_.failedSteps;
+    ++warnings_.consecutiveFailures;
+  }
+}
+
+}  // namespace rope::bullet

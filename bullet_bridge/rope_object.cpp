@@ -138,6 +138,7 @@ int RopeObject::attachToBody(double s, btRigidBody& body, const btVector3& local
   if (!world_->containsBody(body)) {
     throw InvalidArgument("body", "not in the rope's world", "must be added to the Bullet world first");
   }
+  requireNewBodyPoint(s, body);
   Attachment attachment;
   attachment.id = nextAttachmentId_++;
   attachment.s = s;

@@ -51,7 +51,9 @@ class RopeObject {
   // ---- attachments (ids are unique per rope) ----
   // C(s) to the body's point `localPoint` (centre-of-mass frame). Throws InvalidArgument for s
   // outside the rope or NaN ("s"), a non-finite localPoint ("localPoint"), bad settings
-  // ("attachment.*"), a rope in no world ("rope"), or a body not in the rope's world ("body").
+  // ("attachment.*"), a rope in no world ("rope"), a body not in the rope's world ("body"), or the
+  // same body already attached within RodSettings::minKnotSpacing (rest length) of s ("s": a second
+  // spring at one point only stiffens the first beyond its stability cap; change its settings).
   int attachToBody(double s, btRigidBody& body, const btVector3& localPoint, const AttachmentSettings& settings = {});
   // C(s) held at a world point (a rod pin); move it with setAttachmentTarget. Throws for a bad s
   // ("s"), a non-finite point ("point") or a pin already at s.
@@ -125,6 +127,7 @@ class RopeObject {
   // Adds the substep's outcome to warnings_ (called once per substep, after endSubstep or skipSubstep).
   void countSubstep();
   int findAttachment(int id) const;
+  void requireNewBodyPoint(double s, const btRigidBody& body) const;  // rope_object_failures.cpp
   void gatherContacts(const std::vector<const btCollisionObject*>& candidates, double h);
   // Whether the rope is attached to object within 4 radii of the capsule [s0, s1]: the rope's end sits
   // in the body's surface there, so those contacts are ignored.

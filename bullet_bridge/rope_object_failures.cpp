@@ -1,10 +1,26 @@
-// RopeObject: what a RopeWorld does when a rope's substep cannot run or goes wrong (rope_warnings.h).
-// Nothing here throws: these run inside Bullet's stepSimulation.
-#include "bullet_bridge/rope_object.h"
+// RopeObject: attachments that would break the rope are refused; what a RopeWorld does when a rope's
+// substep cannot run or goes wrong (rope_warnings.h; nothing there throws, it runs inside Bullet's
+// stepSimulation).
+#include <algorithm>
 
+#include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/world_membership.h"
+#include "rope/common/error.h"
+#include "rope/spline/arc_length.h"
 
 namespace rope::bullet {
+
+void RopeObject::requireNewBodyPoint(double s, const btRigidBody& body) const {
+  for (const Attachment& other : attachments_) {
+    if (other.body != &body) continue;
+    const double gap = arcLength(rod_.knots(), rod_.restControlPoints(), std::min(s, other.s), std::max(s, other.s));
+    if (!(gap >= rod_.settings().minKnotSpacing)) {
+      throw InvalidArgument("s", formatValue(s),
+                            "the body is already attached at s = " + formatValue(other.s) + " (attachment " +
+                                std::to_string(other.id) + "), closer than settings.minKnotSpacing");
+    }
+  }
+}
 
 void RopeObject::dropDepartedAttachments(const btCollisionWorld& world) {
   droppedAttachments_ = 0;

@@ -87,6 +87,9 @@ Rod Rod::fromSegment(const RodSettings& settings, const Vec3& a, const Vec3& b) 
 
 Rod Rod::fromCurve(const RodSettings& settings, const KnotVector& knots, const PointList& points,
                    RestShape restShape) {
+  if (restShape != RestShape::kScaledToRestLength && restShape != RestShape::kAsGiven) {
+    throw InvalidArgument("rest", std::to_string(static_cast<int>(restShape)), "is not a Rod::RestShape");
+  }
   PointList rest = points;
   if (restShape == RestShape::kScaledToRestLength) {
     const double length = arcLength(knots, points, knots.validBegin(), knots.validEnd());
@@ -240,6 +243,7 @@ int Rod::pin(double s, const Vec3& target) {
     throw InvalidArgument("pins", std::to_string(pins_.size() + 1),
                           "more pins than control points (" + std::to_string(controlPointCount()) + ")");
   }
+  requireIndependentPin(s);
   Pin added;
   added.id = nextPinId_++;
   added.parameter = s;

@@ -74,7 +74,8 @@ class Rod {
   // |b - a| != restLength starts stretched or compressed.
   static Rod fromSegment(const RodSettings& settings, const Vec3& a, const Vec3& b);
   // Rope through the polyline (interpolated by a clamped spline of settings.degree, one control point
-  // per polyline point): it can be created bent and slack.
+  // per polyline point): it can be created bent and slack. Like fromControlPoints, throws
+  // InvalidArgument("rest", ...) for a value outside RestShape.
   static Rod fromPolyline(const RodSettings& settings, const PointList& points,
                           RestShape rest = RestShape::kScaledToRestLength);
   // Explicit control points and knots; the rest curve is derived from them ...
@@ -118,8 +119,10 @@ class Rod {
 
   // ---- pins ----
   // Holds C(s) at target (default: where it is now). Throws InvalidArgument for s outside the valid
-  // range or NaN ("s"), a pin already at s ("s"), a non-finite target ("target"), or more pins than
-  // control points ("pins"). Returns the pin's id.
+  // range or NaN ("s"), a pin already at s or closer to another pin than settings.minKnotSpacing of
+  // rest length ("s"), a pin the spline has no freedom left for around s (pin rows dependent,
+  // pinRowsIndependent) ("s"), a non-finite target ("target"), or more pins than control points
+  // ("pins"): each of those would make every later step fail. Returns the pin's id.
   int pin(double s, const Vec3& target);
   int pin(double s);
   // Target for the end of the next step (moving pins). Throws for an unknown id ("id") or non-finite target.
@@ -191,6 +194,7 @@ class Rod {
                        RestShape rest);
   void validateParameter(double s) const;
   int findPin(int id) const;
+  void requireIndependentPin(double s) const;  // rod_pins.cpp
   bool assembleAndSolve(double h, StepReport& report);
   void adapt(StepReport& report);
   void insertKnotUnchecked(double s);

@@ -53,6 +53,10 @@ void RodSettings::validate() const {
     throw InvalidArgument("settings.degree", std::to_string(degree),
                           "must be in 1.." + std::to_string(kMaxDegree));
   }
+  if (stretchingQuadrature != StretchingQuadrature::kExact && stretchingQuadrature != StretchingQuadrature::kLockingFree) {
+    throw InvalidArgument("settings.stretchingQuadrature", std::to_string(static_cast<int>(stretchingQuadrature)),
+                          "is not a StretchingQuadrature");
+  }
   requireCount("settings.minControlPoints", minControlPoints, degree + 1);
   requireCount("settings.maxControlPoints", maxControlPoints, minControlPoints);
   requireCount("settings.initialControlPoints", initialControlPoints, minControlPoints);

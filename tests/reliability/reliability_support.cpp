@@ -33,6 +33,7 @@ ActionWorld::~ActionWorld() {
 }
 
 btDiscreteDynamicsWorld& ActionWorld::world() { return *world_; }
+const btDiscreteDynamicsWorld& ActionWorld::world() const { return *world_; }
 
 void ActionWorld::runActions(btScalar dt) { world_->updateActions(dt); }
 

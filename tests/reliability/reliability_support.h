@@ -26,6 +26,7 @@ class ActionWorld {
   ~ActionWorld();  // removes and deletes the bodies it made (not the user's)
 
   btDiscreteDynamicsWorld& world();
+  const btDiscreteDynamicsWorld& world() const;
   // What stepSimulation does to the actions in one substep of dt (no collision detection, no bodies).
   void runActions(btScalar dt);
   // How many actions (btActionInterface) the world holds.

@@ -81,8 +81,9 @@ RopeObject::~RopeObject() {
   }
 }
 
-std::unique_ptr<RopeObject> RopeObject::cut(double s) {
-  requireParameter(rod_, s);
+std::unique_ptr<RopeObject> RopeObject::cut(double requested) {
+  requireParameter(rod_, requested);
+  const double s = rod_.cutPoint(requested);  // onto a knot within minKnotSpacing (Rod::cutPoint)
   for (const Attachment& attachment : attachments_) {
     if (attachment.body != nullptr && attachment.s == s) {
       throw InvalidArgument("s", formatValue(s), "a body attachment is at the cut");

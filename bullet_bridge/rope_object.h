@@ -66,7 +66,8 @@ class RopeObject {
   const std::vector<Attachment>& attachments() const { return attachments_; }
 
   // ---- cutting ([A] §5.1) ----
-  // Cuts the rope at s (strictly inside; not exactly at a pin or a body attachment): this object keeps
+  // Cuts the rope at s (Rod::cutPoint: on a knot within minKnotSpacing of s; no piece shorter than
+  // that; not exactly at a pin or a body attachment): this object keeps
   // [beginParameter, s] and the returned one is [s, endParameter] (Rod::cut: the two pieces share no
   // basis function, so no mass, energy or force term). Positions, velocities, rest state, pins and
   // attachments go to the piece they lie on; attachment ids are kept. If this rope is in a world, the

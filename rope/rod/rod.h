@@ -167,13 +167,21 @@ class Rod {
 
   // ---- explicit refinement and cutting ----
   // Exact insertion ([A] §3.1): positions and velocities along the curve do not change. Explicit edits
-  // are not bound by min/maxControlPoints (those limit adaptivity).
+  // are not bound by min/maxControlPoints (those limit adaptivity). Throws InvalidArgument("s", ...)
+  // for s outside the open range, at full multiplicity, or (a new knot value) closer than
+  // settings.minKnotSpacing of rest length to a neighbouring knot: so short a span makes every
+  // later step fail.
   void insertKnot(double s);
   // Removes one occurrence of the knot s ([A] eq. 7); returns how much the fields moved.
   RemovalReport removeKnot(double s);
-  // Cuts at s (strictly inside, no pin exactly at s): two independent rods that inherit positions,
+  // Cuts at cutPoint(s) (no pin exactly there): two independent rods that inherit positions,
   // velocities, rest state, pins and queued loads on their side. This rod is unchanged.
   std::pair<Rod, Rod> cut(double s) const;
+  // Where cut(s) cuts: s itself, or the knot within settings.minKnotSpacing (rest length) of s if
+  // there is one (a cut beside a knot would leave a span too short to step). Throws
+  // InvalidArgument("s", ...) for s outside the rope, NaN, or leaving a piece shorter than
+  // settings.minKnotSpacing.
+  double cutPoint(double s) const;
 
  private:
   struct PointLoad {
@@ -194,7 +202,10 @@ class Rod {
                        RestShape rest);
   void validateParameter(double s) const;
   int findPin(int id) const;
-  void requireIndependentPin(double s) const;  // rod_pins.cpp
+  // rod_edit_checks.cpp
+  void requireIndependentPin(double s) const;
+  void requireResolvableKnot(double s) const;
+  double restDistance(double a, double b) const;  // rest arc length between two parameters, m
   bool assembleAndSolve(double h, StepReport& report);
   void adapt(StepReport& report);
   void insertKnotUnchecked(double s);

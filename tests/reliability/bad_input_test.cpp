@@ -7,11 +7,12 @@
 //
 // Categories (the table in kCases has one row per call; the name of each ctest says which):
 //   rope/ settings      RodSettings: every numeric field NaN, infinite, zero or negative, counts and
-//                       degree out of range, a stretchingQuadrature outside the enum, angles unordered.
+//                       degree out of range, a stretchingQuadrature outside the enum, angles unordered,
+//                       a radius whose derived area overflows.
 //   rope/ Rod           fromSegment with a == b or NaN ends; fromPolyline with one point or
 //                       coincident points; position/strain/pin/addForce/addImpulse/addSpring/
-//                       insertKnot/removeKnot/cut with s NaN, outside the rope, at an end or not a
-//                       knot; pins coincident or a rounding step apart; NaN targets, forces and
+//                       insertKnot/removeKnot/cut with s NaN, outside the rope, at an end, a hair from
+//                       a knot or an end, or not a knot; pins coincident or a rounding step apart; NaN targets, forces and
 //                       matrices; unknown pin ids; wrong point counts; step with h = 0, < 0, NaN,
 //                       inf; the split step without a trial.
 //   rope/ spline        knot vectors with degree 0 or decreasing knots; curves with the wrong point
@@ -211,6 +212,8 @@ std::vector<Case> allCases() {
       rodSetting("rod restLength NaN", "settings.restLength", "nan", [](RodSettings& s) { s.restLength = kNaN; }),
       rodSetting("rod radius negative", "settings.radius", "-0.01", [](RodSettings& s) { s.radius = -0.01; }),
       rodSetting("rod radius inf", "settings.radius", "inf", [](RodSettings& s) { s.radius = kInf; }),
+      rodSetting("rod radius 1e200 overflows the area", "settings.radius", "9.9999999999999997e+199",
+                 [](RodSettings& s) { s.radius = 1e200; }),
       rodSetting("rod linearDensity 0", "settings.linearDensity", "0", [](RodSettings& s) { s.linearDensity = 0; }),
       rodSetting("rod materialDensity NaN", "settings.materialDensity", "nan",
                  [](RodSettings& s) { s.materialDensity = kNaN; }),
@@ -291,6 +294,8 @@ std::vector<Case> allCases() {
       {"rod trialVelocities without trial", "trial", "none", [](Fixture& f) { f.rod.trialVelocities(); }},
       {"rod commitTrial without trial", "trial", "none", [](Fixture& f) { f.rod.commitTrial(); }},
       {"rod insertKnot outside", "s", "3", [](Fixture& f) { f.rod.insertKnot(3.0); }},
+      {"rod insertKnot a hair from a knot", "s", "", [](Fixture& f) { f.rod.insertKnot(f.rod.knots()[5] + 1e-9); }},
+      {"rod cut a hair from the end", "s", "", [](Fixture& f) { f.rod.cut(1.0 - 1e-9); }},
       {"rod removeKnot not a knot", "s", "", [](Fixture& f) { f.rod.removeKnot(0.123456); }},
       {"rod cut at an end", "s", "", [](Fixture& f) { f.rod.cut(1.0); }},
       {"rod cut at a pin", "s", "", [](Fixture& f) { f.rod.cut(0.0); }},
@@ -410,6 +415,7 @@ std::vector<Case> allCases() {
       {"rope cut at an end", "s", "", [](Fixture& f) { f.rope.cut(0.0); }},
       {"rope cut at a body attachment", "s", "1", [](Fixture& f) { f.rope.cut(1.0); }},
       {"rope cut NaN", "s", "nan", [](Fixture& f) { f.rope.cut(kNaN); }},
+      {"rope cut a hair from the start", "s", "9.9999999999999995e-08", [](Fixture& f) { f.rope.cut(1e-7); }},
       {"rope added twice", "rope", "", [](Fixture& f) { f.ropes.addRope(f.rope); }},
       {"rope in two worlds", "rope", "", [](Fixture& f) { f.otherRopes.addRope(f.rope); }},
       {"rope removed from a world it is not in", "rope", "", [](Fixture& f) { f.otherRopes.removeRope(f.rope); }},

@@ -11,6 +11,7 @@
 #include "bullet_bridge/body_state.h"
 #include "bullet_bridge/capsule_proxies.h"  // kRopeCapsuleTag: dynamic rope capsules are not bodies to push
 #include "bullet_bridge/find_contacts.h"
+#include "bullet_bridge/guarded_call.h"
 #include "bullet_bridge/kinematic_push.h"
 #include "bullet_bridge/world_membership.h"
 #include "rope/common/error.h"
@@ -74,13 +75,8 @@ class KinematicRope::Action : public btActionInterface {
   explicit Action(KinematicRope& owner) : owner_(owner) {}
   // Nothing may leave Bullet's step (kinematic_rope.h, "Failures").
   void updateAction(btCollisionWorld*, btScalar dt) override {
-    try {
-      owner_.substep(static_cast<double>(dt));
-    } catch (const std::exception& error) {
-      owner_.recoverFromException(error.what());
-    } catch (...) {
-      owner_.recoverFromException("unknown exception");
-    }
+    guardedCall([&] { owner_.substep(static_cast<double>(dt)); },
+                [&](const char* message) { owner_.recoverFromException(message); });
   }
   // Bullet calls this from debugDrawWorld() (wireframe or AABB mode): the rope's centre line.
   void debugDraw(btIDebugDraw* drawer) override {
@@ -212,23 +208,19 @@ bool KinematicRope::driverTarget(Vec3& target) {
       }
       target = toVec(body_->getCenterOfMassTransform() * localPoint_);
       break;
-    case Driver::kPath:
-      try {
-        target = toVec(path_(time_));
-      } catch (const std::exception& error) {
-        lastError_ = error.what();
-        report_.targetFailure = "the path function threw an exception (KinematicRope::lastError())";
-        ++warnings_.pathExceptions;
-        ++warnings_.targetFailures;
-        return false;
-      } catch (...) {
-        lastError_ = "unknown exception";
-        report_.targetFailure = "the path function threw an exception (KinematicRope::lastError())";
-        ++warnings_.pathExceptions;
-        ++warnings_.targetFailures;
-        return false;
-      }
+    case Driver::kPath: {
+      bool threw = false;
+      guardedCall([&] { target = toVec(path_(time_)); },
+                  [&](const char* message) {
+                    threw = true;
+                    lastError_ = message;
+                    report_.targetFailure = "the path function threw an exception (KinematicRope::lastError())";
+                    ++warnings_.pathExceptions;
+                    ++warnings_.targetFailures;
+                  });
+      if (threw) return false;
       break;
+    }
   }
   if (!acceptable(target)) {
     report_.targetFailure = driver_ == Driver::kBody ? "the followed body's point is not finite"

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "bullet_bridge/capsule_proxies.h"
+#include "bullet_bridge/guarded_call.h"
 #include "bullet_bridge/rope_debug_draw.h"
 #include "rope/common/error.h"
 
@@ -27,13 +28,8 @@ class RopeWorld::Action : public btActionInterface {
   // substep(); this catches what is left (an allocation failure, say), drops every rope's pending
   // trial so that each keeps its last committed state, and counts it.
   void updateAction(btCollisionWorld*, btScalar dt) override {
-    try {
-      owner_.substep(static_cast<double>(dt));
-    } catch (const std::exception& error) {
-      owner_.recoverFromException(error.what());
-    } catch (...) {
-      owner_.recoverFromException("unknown exception");
-    }
+    guardedCall([&] { owner_.substep(static_cast<double>(dt)); },
+                [&](const char* message) { owner_.recoverFromException(message); });
   }
   void debugDraw(btIDebugDraw* drawer) override {
     if (owner_.debugDraw_ && drawer != nullptr) drawRopes(owner_, *drawer);
@@ -104,13 +100,7 @@ void RopeWorld::substep(double h) {
     return;
   }
   findCandidates();
-  report_.substep += 1;
-  report_.timeStep = h;
-  report_.failure = "";
-  report_.contacts.clear();
-  report_.ropes.clear();
-  report_.ropeContacts.clear();
-  report_.ropeContactFailure = "";
+  startReport(h);
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     RopeObject& rope = *ropes_[r];
     // Bodies removed from the world (perhaps deleted) since the last substep lose their attachments
@@ -122,25 +112,13 @@ void RopeWorld::substep(double h) {
       return a->getWorldArrayIndex() < b->getWorldArrayIndex();
     });
     list.erase(std::unique(list.begin(), list.end()), list.end());
-    try {
-      rope.beginSubstep(list, h);
-    } catch (const std::exception& error) {
-      rope.failSubstep(error.what());
-    } catch (...) {
-      rope.failSubstep("unknown exception");
-    }
+    guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
   }
 
   solveRopeContacts(h);
 
   for (RopeObject* rope : ropes_) {
-    try {
-      rope->endSubstep(h);
-    } catch (const std::exception& error) {
-      rope->failSubstep(error.what());
-    } catch (...) {
-      rope->failSubstep("unknown exception");
-    }
+    guardedCall([&] { rope->endSubstep(h); }, [&](const char* message) { rope->failSubstep(message); });
     rope->countSubstep();
     report_.contacts.insert(report_.contacts.end(), rope->contacts().begin(), rope->contacts().end());
     report_.ropes.push_back(rope->lastStep());
@@ -148,15 +126,20 @@ void RopeWorld::substep(double h) {
   runCallback();
 }
 
-void RopeWorld::skipSubstep(double h) {
-  ++warnings_.skippedSubsteps;
+void RopeWorld::startReport(double h) {
   report_.substep += 1;
   report_.timeStep = h;
-  report_.failure = "the substep's time step is not finite and > 0: no rope stepped";
+  report_.failure = "";
   report_.contacts.clear();
   report_.ropes.clear();
   report_.ropeContacts.clear();
   report_.ropeContactFailure = "";
+}
+
+void RopeWorld::skipSubstep(double h) {
+  ++warnings_.skippedSubsteps;
+  startReport(h);
+  report_.failure = "the substep's time step is not finite and > 0: no rope stepped";
   for (RopeObject* rope : ropes_) {
     rope->skipSubstep(report_.failure);
     rope->countSubstep();
@@ -221,17 +204,15 @@ void RopeWorld::solveRopeContacts(double h) {
   std::sort(capsulePairs_.begin(), capsulePairs_.end(), [](const RopeCapsulePair& a, const RopeCapsulePair& b) {
     return std::tie(a.ropeA, a.capsuleA, a.ropeB, a.capsuleB) < std::tie(b.ropeA, b.capsuleA, b.ropeB, b.capsuleB);
   });
-  try {
-    const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
-    if (ropeContacts < 0) {
-      report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
-      ++warnings_.ropeContactFailures;
-    }
-  } catch (const std::exception& error) {
-    failRopeContacts(error.what());
-  } catch (...) {
-    failRopeContacts("unknown exception");
-  }
+  guardedCall(
+      [&] {
+        const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
+        if (ropeContacts < 0) {
+          report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
+          ++warnings_.ropeContactFailures;
+        }
+      },
+      [&](const char* message) { failRopeContacts(message); });
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     int active = 0;
     double overlap = 0.0;
@@ -259,15 +240,11 @@ void RopeWorld::failRopeContacts(const char* message) {
 
 void RopeWorld::runCallback() {
   if (!callback_) return;
-  try {
-    callback_(report_);
-  } catch (const std::exception& error) {
-    ++warnings_.callbackExceptions;
-    lastError_ = error.what();
-  } catch (...) {
-    ++warnings_.callbackExceptions;
-    lastError_ = "unknown exception";
-  }
+  guardedCall([&] { callback_(report_); },
+              [&](const char* message) {
+                ++warnings_.callbackExceptions;
+                lastError_ = message;
+              });
 }
 
 void RopeWorld::recoverFromException(const char* message) noexcept {

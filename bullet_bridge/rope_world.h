@@ -83,6 +83,7 @@ class RopeWorld {
   class Action;
   void substep(double h);
   // The parts of substep(); each rope's own failures are caught around its calls.
+  void startReport(double h);
   void skipSubstep(double h);
   void findCandidates();
   void solveRopeContacts(double h);

@@ -17,9 +17,10 @@
 // leaves the dead world alone, in its destructor too; a RopeWorld that held no rope then has nothing
 // to notice it by, and destroying it after its world is undefined behaviour.
 //
-// Failures: nothing is thrown out of stepSimulation. A rope whose substep fails (its solve, a
-// non-finite body, an exception from rope code) keeps its last good state; its RopeStepRecord says why
-// and RopeObject::warnings() counts it, and the other ropes and the Bullet world go on. A substep with
+// Failures: nothing is thrown out of stepSimulation. A rope whose substep fails (a failed solve, an
+// exception from rope code or the narrowphase) keeps its last good state; its RopeStepRecord says why
+// and RopeObject::warnings() counts it, and the other ropes and the Bullet world go on. A body with a
+// non-finite transform, velocity or mass is passed over for the substep and counted. A substep with
 // a time step that is not finite and > 0 is skipped; an exception thrown by the substep callback is
 // caught. Both are counted in warnings() (rope_warnings.h).
 //

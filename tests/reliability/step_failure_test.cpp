@@ -5,7 +5,8 @@
 //     out of every step);
 //   - a substep with h < 0, NaN or infinite (was: InvalidArgument("h") from the action);
 //   - an exception from the narrowphase (a user's concave shape throwing; the contact path caught
-//     only InvalidArgument), from the substep callback, and from a kinematic rope's followPath.
+//     only InvalidArgument) of a dynamic or a kinematic rope, from the substep callback, and from a
+//     kinematic rope's followPath.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -254,6 +255,30 @@ TEST(StepFailure, KinematicRopeBadTimeStepIsSkipped) {
   world.runActions(btScalar(kStep));
   EXPECT_EQ(hose.lastStep().failure, nullptr);
   EXPECT_EQ(hose.leadingEnd(), btVector3(btScalar(-0.2), 1, 0));
+}
+
+// An exception from the narrowphase of a kinematic rope (a dynamic body with a user's concave shape
+// that throws) leaves the rope's substep through its action's guard: counted, reported, no throw.
+TEST(StepFailure, KinematicRopeNarrowphaseExceptionIsCaught) {
+  ActionWorld world(btVector3(0, 0, 0));
+  test::ThrowingGroundShape shape(1);
+  btRigidBody::btRigidBodyConstructionInfo info(1.0, nullptr, &shape, btVector3(1, 1, 1));
+  info.m_startWorldTransform.setOrigin(btVector3(0.5, btScalar(0.995), 0));
+  btRigidBody plate(info);
+  world.world().addRigidBody(&plate);
+  KinematicRope hose(TractrixRope(PointList{Vec3(0, 1, 0), Vec3(1, 1, 0)}, TractrixSettings{}));
+  hose.addToWorld(world.world());
+  shape.arm(true);
+  EXPECT_NO_THROW(world.runActions(btScalar(kStep)));
+  EXPECT_NE(hose.lastStep().failure, nullptr);
+  EXPECT_EQ(hose.warnings().exceptions, 1);
+  EXPECT_EQ(hose.lastError(), "injected narrowphase failure");
+  shape.arm(false);
+  world.runActions(btScalar(kStep));
+  EXPECT_EQ(hose.lastStep().failure, nullptr);
+  EXPECT_EQ(hose.warnings().exceptions, 1);
+  hose.removeFromWorld();
+  world.world().removeRigidBody(&plate);
 }
 
 // A body with a NaN velocity in a kinematic rope's way gets no (NaN) impulse; it is counted.

@@ -30,6 +30,7 @@ struct Attachment {
   AttachmentSettings settings;
   int pinId = 0;                      // the rod pin of a point attachment
   btVector3 lastForce{0, 0, 0};       // force on the rope in the last substep, N (body attachments)
+  int bodyIndexHint = -1;             // where the body was last seen in its world's object array (world_membership.h)
 };
 
 // The rope side of a body attachment: f = -k (x_new - p_new) - c (u_new - v_p) with the body point

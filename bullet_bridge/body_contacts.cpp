@@ -7,38 +7,14 @@
 #include <cmath>
 #include <limits>
 
+#include "bullet_bridge/body_state.h"
+#include "bullet_bridge/bullet_math.h"
 #include "bullet_bridge/find_contacts.h"
 #include "rope/common/error.h"
 
 namespace rope::bullet {
 
 namespace {
-
-Vec3 toVec(const btVector3& v) {
-  return Vec3(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z()));
-}
-
-btVector3 toBullet(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
-}
-
-bool isFinite(const btTransform& t) {
-  const auto finite = [](const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); };
-  return finite(t.getOrigin()) && finite(t.getBasis()[0]) && finite(t.getBasis()[1]) && finite(t.getBasis()[2]);
-}
-
-// A dynamic body that takes impulses, or nullptr for static and kinematic objects.
-btRigidBody* dynamicBody(const btCollisionObject& object) {
-  btRigidBody* body = btRigidBody::upcast(const_cast<btCollisionObject*>(&object));
-  if (body == nullptr || body->isStaticOrKinematicObject() || !(body->getInvMass() > 0)) return nullptr;
-  return body;
-}
-
-Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point) {
-  const btRigidBody* body = btRigidBody::upcast(&object);
-  if (body == nullptr) return Vec3::Zero();
-  return toVec(body->getVelocityInLocalPoint(point - body->getCenterOfMassPosition()));
-}
 
 // A world point in the frame of `frame`, computed componentwise: Bullet's SIMD inverse multiplies
 // unused vector lanes, which raised FE_INVALID under FP traps in the float build.

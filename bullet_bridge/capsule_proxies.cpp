@@ -30,8 +30,18 @@ void CapsuleProxies::addToWorld(btCollisionWorld& world, int group, int mask) {
 
 void CapsuleProxies::removeFromWorld() {
   if (world_ == nullptr) return;
-  for (CapsuleProxy& proxy : proxies_) world_->removeCollisionObject(proxy.object.get());
+  if (!orphaned()) {
+    for (CapsuleProxy& proxy : proxies_) world_->removeCollisionObject(proxy.object.get());
+  }
   world_ = nullptr;
+}
+
+bool CapsuleProxies::orphaned() const {
+  if (world_ == nullptr || proxies_.empty()) return false;
+  for (const CapsuleProxy& proxy : proxies_) {
+    if (proxy.object->getBroadphaseHandle() != nullptr) return false;
+  }
+  return true;
 }
 
 void CapsuleProxies::rebuild(const Rod& rod) {

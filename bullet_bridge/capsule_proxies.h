@@ -41,8 +41,13 @@ class CapsuleProxies {
   CapsuleProxies& operator=(const CapsuleProxies&) = delete;
 
   // Registers every capsule in world's broadphase with the given filter / removes them again.
+  // removeFromWorld leaves the world alone if it was destroyed already (orphaned()).
   void addToWorld(btCollisionWorld& world, int group, int mask);
   void removeFromWorld();
+  // True if the capsules were added to a world and every one has since lost its broadphase handle:
+  // Bullet's btCollisionWorld destructor clears the handles of the objects still in it, so the world
+  // was destroyed (or someone removed every capsule by hand) and must not be touched any more.
+  bool orphaned() const;
 
   // Follows the rod's current knots (adds or removes capsules) and evaluates the capsule axes.
   void rebuild(const Rod& rod);

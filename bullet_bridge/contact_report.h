@@ -50,7 +50,8 @@ struct RopeStepRecord {
   double maxPenetration = 0.0;   // m, deepest contact at the start of the substep (0 if none)
   int contacts = 0;              // active contacts
   int proxyOverflows = 0;        // capsules whose box was too large for Bullet (not updated)
-  int skippedBodies = 0;         // candidate bodies skipped (non-finite transform, unsupported shape)
+  int skippedBodies = 0;         // candidate or attached bodies skipped (non-finite state, unsupported shape)
+  int droppedAttachments = 0;    // body attachments dropped because their body left the Bullet world
   int controlPoints = 0;         // after the step's adaptivity
   int insertions = 0;            // knots inserted by the step's adaptivity
   int removals = 0;              // knots removed by the step's adaptivity
@@ -66,6 +67,9 @@ struct RopeStepRecord {
 struct ContactReport {
   long substep = 0;     // substeps run since the RopeWorld was created (1 for the first)
   double timeStep = 0;  // s
+  // Non-empty: the whole substep was skipped (a time step that is not finite and > 0) or failed at
+  // world level; the ropes kept their state (static text; RopeWorld::warnings() counts it).
+  const char* failure = "";
   std::vector<RopeContactRecord> contacts;
   std::vector<RopeStepRecord> ropes;
   std::vector<RopePairContactRecord> ropeContacts;  // rope-rope and self-contacts

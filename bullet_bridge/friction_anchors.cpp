@@ -1,4 +1,5 @@
 #include "bullet_bridge/friction_anchors.h"
+#include "bullet_bridge/bullet_math.h"
 
 #include <algorithm>
 #include <functional>
@@ -12,10 +13,6 @@ namespace {
 bool before(const FrictionAnchor& x, const btCollisionObject* body, double s) {
   if (x.body != body) return std::less<const btCollisionObject*>()(x.body, body);
   return x.s < s;
-}
-
-btVector3 toBullet(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
 }
 
 }  // namespace

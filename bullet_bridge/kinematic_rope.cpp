@@ -8,9 +8,12 @@
 #include <string>
 #include <tuple>
 
+#include "bullet_bridge/body_state.h"
 #include "bullet_bridge/capsule_proxies.h"  // kRopeCapsuleTag: dynamic rope capsules are not bodies to push
 #include "bullet_bridge/find_contacts.h"
+#include "bullet_bridge/guarded_call.h"
 #include "bullet_bridge/kinematic_push.h"
+#include "bullet_bridge/world_membership.h"
 #include "rope/common/error.h"
 #include "rope/spline/bspline_curve.h"
 #include "rope/tractrix/tractrix_segment.h"
@@ -38,6 +41,13 @@ bool acceptable(const Vec3& p) {
   return true;
 }
 
+bool finite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+bool finiteContact(const Contact& contact) {
+  return finite(contact.pointOnBody) && finite(contact.normal) && std::isfinite(contact.distance) &&
+         std::isfinite(contact.t);
+}
+
 void requireTarget(const char* name, const btVector3& p) {
   static const char* const kAxes[3] = {".x", ".y", ".z"};
   for (int c = 0; c < 3; ++c) requireTractrixCoordinate(std::string(name) + kAxes[c], static_cast<double>(p[c]));
@@ -63,7 +73,11 @@ btRigidBody* pushableBody(const btBroadphaseProxy& proxy, int group, int mask, c
 class KinematicRope::Action : public btActionInterface {
  public:
   explicit Action(KinematicRope& owner) : owner_(owner) {}
-  void updateAction(btCollisionWorld*, btScalar dt) override { owner_.substep(static_cast<double>(dt)); }
+  // Nothing may leave Bullet's step (kinematic_rope.h, "Failures").
+  void updateAction(btCollisionWorld*, btScalar dt) override {
+    guardedCall([&] { owner_.substep(static_cast<double>(dt)); },
+                [&](const char* message) { owner_.recoverFromException(message); });
+  }
   // Bullet calls this from debugDrawWorld() (wireframe or AABB mode): the rope's centre line.
   void debugDraw(btIDebugDraw* drawer) override {
     if (drawer == nullptr) return;
@@ -105,10 +119,20 @@ void KinematicRope::addToWorld(btDiscreteDynamicsWorld& world) {
 
 void KinematicRope::removeFromWorld() {
   if (world_ == nullptr) return;
-  world_->removeAction(action_.get());
-  for (auto& object : objects_) world_->removeCollisionObject(object.get());
+  if (!orphaned()) {  // else the Bullet world was destroyed already and must not be touched
+    world_->removeAction(action_.get());
+    for (auto& object : objects_) world_->removeCollisionObject(object.get());
+  }
   world_ = nullptr;
   report_.contacts.clear();  // their body pointers may outlive nothing else
+}
+
+bool KinematicRope::orphaned() const {
+  if (world_ == nullptr || objects_.empty()) return false;
+  for (const auto& object : objects_) {
+    if (object->getBroadphaseHandle() != nullptr) return false;
+  }
+  return true;
 }
 
 void KinematicRope::followBodyPoint(btRigidBody* body, const btVector3& localPoint) {
@@ -117,6 +141,7 @@ void KinematicRope::followBodyPoint(btRigidBody* body, const btVector3& localPoi
   for (int c = 0; c < 3; ++c) requireFinite(kAxes[c], static_cast<double>(localPoint[c]));
   driver_ = Driver::kBody;
   body_ = body;
+  bodyIndexHint_ = body->getWorldArrayIndex();
   localPoint_ = localPoint;
   path_ = nullptr;
 }
@@ -175,34 +200,68 @@ bool KinematicRope::driverTarget(Vec3& target) {
       target = target_;
       return true;
     case Driver::kBody:
-      if (body_->getBroadphaseHandle() == nullptr) {
-        report_.targetFailure = "the followed body is not in a world";
+      // Compared by pointer only: a body removed from the world may have been deleted.
+      if (!isInWorld(*world_, body_, bodyIndexHint_)) {
+        report_.targetFailure = "the followed body is not in the rope's world";
+        ++warnings_.targetFailures;
         return false;
       }
       target = toVec(body_->getCenterOfMassTransform() * localPoint_);
       break;
-    case Driver::kPath:
-      target = toVec(path_(time_));
+    case Driver::kPath: {
+      bool threw = false;
+      guardedCall([&] { target = toVec(path_(time_)); },
+                  [&](const char* message) {
+                    threw = true;
+                    lastError_ = message;
+                    report_.targetFailure = "the path function threw an exception (KinematicRope::lastError())";
+                    ++warnings_.pathExceptions;
+                    ++warnings_.targetFailures;
+                  });
+      if (threw) return false;
       break;
+    }
   }
   if (!acceptable(target)) {
     report_.targetFailure = driver_ == Driver::kBody ? "the followed body's point is not finite"
                                                      : "the path returned a non-finite or too distant point";
+    ++warnings_.targetFailures;
     return false;
   }
   return true;
 }
 
 void KinematicRope::substep(double h) {
-  time_ += h;
   report_.substep += 1;
-  report_.time = time_;
   report_.timeStep = h;
+  report_.failure = nullptr;
   report_.targetFailure = nullptr;
   report_.unsupportedBodies = 0;
   report_.maxPenetration = 0.0;
   report_.totalImpulse.setZero();
   report_.contacts.clear();
+  if (!(std::isfinite(h) && h > 0.0)) {
+    report_.failure = "the substep's time step is not finite and > 0: the rope did not move";
+    ++warnings_.skippedSubsteps;
+    return;
+  }
+  time_ += h;
+  report_.time = time_;
+  moveAndPush(h);
+  warnings_.unsupportedBodies += report_.unsupportedBodies;
+}
+
+void KinematicRope::recoverFromException(const char* message) noexcept {
+  ++warnings_.exceptions;
+  try {
+    lastError_ = message;
+  } catch (...) {
+    // out of memory for the message: the count is what matters
+  }
+  report_.failure = "an exception was thrown in the rope's substep (KinematicRope::lastError())";
+}
+
+void KinematicRope::moveAndPush(double h) {
 
   // The curve before the move (copies into the existing capacity once the counts have settled).
   previousKnots_ = rope_.knots();
@@ -352,7 +411,7 @@ void KinematicRope::push(double h) {
     std::size_t last = first;
     while (last < candidates_.size() && candidates_[last].body == body) ++last;
     bodyContacts_.clear();
-    bool unsupported = false;
+    bool unsupported = !bodyStateFinite(*body);  // a NaN body gets no (NaN) impulse
     for (std::size_t c = first; c < last && !unsupported; ++c) {
       const int capsuleIndex = candidates_[c].capsule;
       const std::size_t k = static_cast<std::size_t>(capsuleIndex);
@@ -363,6 +422,10 @@ void KinematicRope::push(double h) {
         unsupported = true;  // a shape the narrowphase does not handle; nothing may throw out of Bullet's step
         break;
       }
+      for (const Contact& contact : scratch_) {
+        if (!finiteContact(contact)) unsupported = true;  // e.g. a body with a non-finite transform
+      }
+      if (unsupported) break;
       const btVector3 velocityA = (axis_[k] - previousAxis_[k]) / static_cast<btScalar>(h);
       const btVector3 velocityB = (axis_[k + 1] - previousAxis_[k + 1]) / static_cast<btScalar>(h);
       for (const Contact& contact : scratch_) {

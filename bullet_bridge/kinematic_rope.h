@@ -23,6 +23,15 @@
 //
 // Timing: Bullet runs actions after a substep's integration; the rope moves to the driver's position
 // for the end of that substep, and the impulses set the bodies' velocities for the next one.
+//
+// Failures: nothing is thrown out of stepSimulation. A substep with a time step that is not finite and
+// > 0 is skipped; an exception from the followPath function or from the rope's own code is caught; the
+// rope then holds where it is, lastStep() says why and warnings() counts it (rope_warnings.h).
+//
+// Lifetime: remove the rope from its world (removeFromWorld, or destroy it) before the Bullet world
+// is destroyed, as for every object a Bullet world holds. If the world is destroyed first anyway,
+// removeFromWorld notices it (Bullet's world destructor clears the broadphase handles of the rope's
+// capsules) and leaves the dead world alone.
 
 #include <BulletDynamics/Dynamics/btActionInterface.h>
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
@@ -30,6 +39,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "bullet_bridge/bullet_precision.h"
@@ -37,6 +47,7 @@
 #include "bullet_bridge/contact.h"
 #include "bullet_bridge/kinematic_push.h"
 #include "bullet_bridge/kinematic_rope_settings.h"
+#include "bullet_bridge/rope_warnings.h"
 #include "bullet_bridge/swept_box_shape.h"
 #include "rope/tractrix/tractrix_rope.h"
 
@@ -65,7 +76,11 @@ struct KinematicRopeStepReport {
   // holds still by choice). A target that is not finite or beyond kMaxTractrixCoordinate, a followed
   // body that left the world: the rope then holds where it is (an exception cannot leave a substep).
   const char* targetFailure = nullptr;
-  // Bodies whose shape the narrowphase does not support (find_contacts.h); they are passed through.
+  // Why the substep did not run or stopped part-way (static text), nullptr if it ran: a time step
+  // that is not finite and > 0, or an exception caught in the rope's code (KinematicRope::lastError()).
+  const char* failure = nullptr;
+  // Bodies passed through: a shape the narrowphase does not support (find_contacts.h), or a
+  // non-finite transform or velocity.
   int unsupportedBodies = 0;
   // Capsule boxes Bullet would drop as too large (diagonal^2 >= 1e12 m^2); the previous box is kept.
   int oversizedBoxes = 0;
@@ -94,14 +109,16 @@ class KinematicRope {
   // leave the rope and its driver unchanged on bad input.
   // The body's point localPoint (centre-of-mass frame, m), read after each substep's integration.
   // The body itself is never pushed by this rope. "body" for nullptr, "localPoint.x|y|z" if not finite.
-  // Remove the driver (hold()) or the rope before the body is destroyed.
+  // While the body is not among the world's collision objects (checked by pointer, never
+  // dereferenced, so it may have been removed and deleted) the rope holds and reports it.
   void followBodyPoint(btRigidBody* body, const btVector3& localPoint);
   // A fixed world point ("target.x|y|z": not finite or beyond kMaxTractrixCoordinate). The rope gets
   // there within one substep, so a distant target is a fast sweep (and bodies it hits get that
   // speed); move it in small steps, or use followPath, for a smooth motion.
   void setTarget(const btVector3& target);
   // position(t) for the simulated time t since addToWorld (s), evaluated at the end of each substep.
-  // "path" for an empty function. A non-finite position makes the rope hold (report.targetFailure).
+  // "path" for an empty function. A non-finite position, or an exception thrown by the function
+  // (caught: warnings().pathExceptions, lastError()), makes the rope hold (report.targetFailure).
   void followPath(std::function<btVector3(double)> path);
   // The leading end stays where it is.
   void hold();
@@ -110,6 +127,10 @@ class KinematicRope {
   const TractrixRope& tractrix() const { return rope_; }
   const KinematicRopeSettings& settings() const { return settings_; }
   const KinematicRopeStepReport& lastStep() const { return report_; }
+  // Warnings counted since the rope was created (rope_warnings.h), and the message of the last
+  // exception caught in a substep ("" if none).
+  const KinematicRopeWarnings& warnings() const { return warnings_; }
+  const std::string& lastError() const { return lastError_; }
   btVector3 leadingEnd() const;
 
   // Capsules at the last substep (or at addToWorld), leading end first.
@@ -128,7 +149,11 @@ class KinematicRope {
   };
 
   void substep(double h);
+  void moveAndPush(double h);
+  void recoverFromException(const char* message) noexcept;
   bool driverTarget(Vec3& target);       // false: hold (report_.targetFailure says why, if it failed)
+  // True if the capsules were in a world and all lost their broadphase handles (the world was destroyed).
+  bool orphaned() const;
   void rebuildCapsules(bool swept);      // parameters, axis points and boxes from the current curve
   void findCandidates();
   void push(double h);
@@ -142,6 +167,7 @@ class KinematicRope {
   Driver driver_ = Driver::kHold;
   Vec3 target_ = Vec3::Zero();
   btRigidBody* body_ = nullptr;
+  int bodyIndexHint_ = -1;  // where body_ was last seen in the world's object array (world_membership.h)
   btVector3 localPoint_{0, 0, 0};
   std::function<btVector3(double)> path_;
   double time_ = 0.0;
@@ -160,6 +186,8 @@ class KinematicRope {
   std::vector<Contact> scratch_;
   std::vector<OneWayContact> bodyContacts_;
   KinematicRopeStepReport report_;
+  KinematicRopeWarnings warnings_;
+  std::string lastError_;
 };
 
 }  // namespace rope::bullet

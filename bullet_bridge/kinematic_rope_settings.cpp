@@ -8,10 +8,14 @@ namespace rope::bullet {
 
 void KinematicRopeSettings::validate() const {
   requirePositive("settings.radius", radius);
+  if (radius > kMaxSize) throw InvalidArgument("settings.radius", formatValue(radius), "must be <= 1e5 (m)");
   if (capsulesPerSpan < 1 || capsulesPerSpan > 64) {
     throw InvalidArgument("settings.capsulesPerSpan", std::to_string(capsulesPerSpan), "must be in [1, 64]");
   }
   requireNonNegative("settings.speculativeMargin", speculativeMargin);
+  if (speculativeMargin > kMaxSize) {
+    throw InvalidArgument("settings.speculativeMargin", formatValue(speculativeMargin), "must be <= 1e5 (m)");
+  }
   requirePositive("settings.penetrationRecovery", penetrationRecovery);
   if (penetrationRecovery > 1.0) {
     throw InvalidArgument("settings.penetrationRecovery", formatValue(penetrationRecovery), "must be <= 1");

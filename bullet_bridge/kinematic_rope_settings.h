@@ -13,13 +13,18 @@
 namespace rope::bullet {
 
 struct KinematicRopeSettings {
-  // Radius of the rope's capsules, m, finite and > 0.
+  // Largest radius and speculativeMargin, m. Every capsule's broadphase box is padded by both, and
+  // Bullet takes an object whose box diagonal reaches 1e6 m out of the simulation
+  // (btCollisionWorld::updateSingleAabb); larger values also overflowed the contact arithmetic
+  // (a radius of 1e308 put NaN into the bodies it pushed).
+  static constexpr double kMaxSize = 1.0e5;
+  // Radius of the rope's capsules, m, in (0, kMaxSize].
   double radius = 0.01;
   // Capsules per knot span of the spline variants, in [1, 64]: the collision geometry is the chain of
   // capsules over capsulesPerSpan equal parameter pieces of every non-empty span. The polyline
   // variant (TRX, degree 1) always uses one capsule per segment, which is exact.
   int capsulesPerSpan = 4;
-  // Speculative contact distance, m, finite and >= 0: contacts are found up to this gap before the
+  // Speculative contact distance, m, in [0, kMaxSize]: contacts are found up to this gap before the
   // surfaces touch, and a body that is still apart is pushed only as much as needed so that the rope
   // does not pass the gap within the next substep at its current speed (no tunnelling through thin
   // bodies). Also pads every broadphase box.

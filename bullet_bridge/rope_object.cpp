@@ -5,27 +5,14 @@
 #include <chrono>
 #include <cmath>
 
+#include "bullet_bridge/body_state.h"
+#include "bullet_bridge/bullet_math.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
 
 namespace rope::bullet {
 
 namespace {
-
-Vec3 toVec(const btVector3& v) {
-  return Vec3(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z()));
-}
-
-btVector3 toBullet(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
-}
-
-bool isFinite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
-
-bool isFinite(const btTransform& t) {
-  return isFinite(t.getOrigin()) && isFinite(t.getBasis()[0]) && isFinite(t.getBasis()[1]) &&
-         isFinite(t.getBasis()[2]);
-}
 
 void requireFinitePoint(const char* name, const btVector3& p) {
   static const char* const kAxes[3] = {".x", ".y", ".z"};
@@ -39,13 +26,6 @@ void requireParameter(const Rod& rod, double s) {
                                                    formatValue(rod.beginParameter()) + ", " +
                                                    formatValue(rod.endParameter()) + "]");
   }
-}
-
-// A dynamic body that takes impulses, or nullptr for static and kinematic objects.
-btRigidBody* dynamicBody(const btCollisionObject& object) {
-  btRigidBody* body = btRigidBody::upcast(const_cast<btCollisionObject*>(&object));
-  if (body == nullptr || body->isStaticOrKinematicObject() || !(body->getInvMass() > 0)) return nullptr;
-  return body;
 }
 
 }  // namespace
@@ -70,8 +50,9 @@ RopeObject::~RopeObject() {
   }
 }
 
-std::unique_ptr<RopeObject> RopeObject::cut(double s) {
-  requireParameter(rod_, s);
+std::unique_ptr<RopeObject> RopeObject::cut(double requested) {
+  requireParameter(rod_, requested);
+  const double s = rod_.cutPoint(requested);  // onto a knot within minKnotSpacing (Rod::cutPoint)
   for (const Attachment& attachment : attachments_) {
     if (attachment.body != nullptr && attachment.s == s) {
       throw InvalidArgument("s", formatValue(s), "a body attachment is at the cut");
@@ -132,10 +113,12 @@ int RopeObject::attachToBody(double s, btRigidBody& body, const btVector3& local
   if (!world_->containsBody(body)) {
     throw InvalidArgument("body", "not in the rope's world", "must be added to the Bullet world first");
   }
+  requireNewBodyPoint(s, body);
   Attachment attachment;
   attachment.id = nextAttachmentId_++;
   attachment.s = s;
   attachment.body = &body;
+  attachment.bodyIndexHint = body.getWorldArrayIndex();
   attachment.localPoint = localPoint;
   attachment.settings = settings;
   attachments_.push_back(attachment);
@@ -189,7 +172,7 @@ void RopeObject::queueAttachments(double h) {
     attachment.lastForce.setZero();
     btRigidBody* body = attachment.body;
     if (body == nullptr || body->getBroadphaseHandle() == nullptr) continue;  // pins act in the rod
-    if (!isFinite(body->getCenterOfMassTransform())) {
+    if (!bodyStateFinite(*body)) {  // a NaN transform, velocity or mass must not poison the rope
       ++lastStep_.skippedBodies;
       continue;
     }
@@ -240,6 +223,7 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
 }
 
 void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
+  requirePositive("h", h);
   rod_.takeLoads(userLoads_);  // queued on rod() or by applyForce since the last substep
   contacts_.clear();
   pending_.clear();
@@ -266,6 +250,7 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
 }
 
 void RopeObject::endSubstep(double h) {
+  requirePositive("h", h);
   using Clock = std::chrono::steady_clock;
   const Clock::time_point commitStart = Clock::now();
   if (lastStep_.ok && rod_.hasTrial()) {

@@ -18,6 +18,7 @@
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "bullet_bridge/attachment.h"
@@ -27,6 +28,7 @@
 #include "bullet_bridge/contact.h"
 #include "bullet_bridge/contact_report.h"
 #include "bullet_bridge/rope_settings.h"
+#include "bullet_bridge/rope_warnings.h"
 #include "rope/rod/rod.h"
 
 namespace rope::bullet {
@@ -51,7 +53,9 @@ class RopeObject {
   // ---- attachments (ids are unique per rope) ----
   // C(s) to the body's point `localPoint` (centre-of-mass frame). Throws InvalidArgument for s
   // outside the rope or NaN ("s"), a non-finite localPoint ("localPoint"), bad settings
-  // ("attachment.*"), a rope in no world ("rope"), or a body not in the rope's world ("body").
+  // ("attachment.*"), a rope in no world ("rope"), a body not in the rope's world ("body"), or the
+  // same body already attached within RodSettings::minKnotSpacing (rest length) of s ("s": a second
+  // spring at one point only stiffens the first beyond its stability cap; change its settings).
   int attachToBody(double s, btRigidBody& body, const btVector3& localPoint, const AttachmentSettings& settings = {});
   // C(s) held at a world point (a rod pin); move it with setAttachmentTarget. Throws for a bad s
   // ("s"), a non-finite point ("point") or a pin already at s.
@@ -73,7 +77,8 @@ class RopeObject {
   void applyImpulse(double s, const btVector3& impulse);
 
   // ---- cutting ([A] §5.1) ----
-  // Cuts the rope at s (strictly inside; not exactly at a pin or a body attachment): this object keeps
+  // Cuts the rope at s (Rod::cutPoint: on a knot within minKnotSpacing of s; no piece shorter than
+  // that; not exactly at a pin or a body attachment): this object keeps
   // [beginParameter, s] and the returned one is [s, endParameter] (Rod::cut: the two pieces share no
   // basis function, so no mass, energy or force term). Positions, velocities, rest state, pins and
   // attachments go to the piece they lie on; attachment ids are kept. If this rope is in a world, the
@@ -95,10 +100,16 @@ class RopeObject {
   // (body_contacts.h), its force the sample's share of the pressure over the substep.
   const std::vector<RopeContactRecord>& contacts() const { return contacts_; }
   const RopeStepRecord& lastStep() const { return lastStep_; }
+  // What went wrong in this rope's substeps since it was created (rope_warnings.h; a RopeWorld counts
+  // them), and the message of the last exception caught in one of them ("" if none).
+  const RopeWarnings& warnings() const { return warnings_; }
+  const std::string& lastError() const { return lastError_; }
 
   // One substep of h seconds against the candidate bodies (sorted, deterministic order), on its own:
   // beginSubstep then endSubstep. RopeWorld's action calls the two halves itself, after Bullet's
   // collision detection, solver and integration of the substep, with rope-rope contact in between.
+  // Throws InvalidArgument("h", ...) for h not finite and > 0 before changing anything. Called
+  // directly, these may throw; inside a RopeWorld every exception is caught and counted (warnings()).
   void substep(const std::vector<const btCollisionObject*>& candidates, double h);
   // Rope-body contacts and attachments, and the rod's trial step with them (Rod::solveTrial; the
   // rod's state is unchanged). lastStep().ok is false if the trial failed.
@@ -116,7 +127,19 @@ class RopeObject {
   }
   void enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld);
   void leaveWorld();
+  // ---- failure handling inside a RopeWorld substep (rope_object_failures.cpp) ----
+  // Drops the body attachments whose body is no longer among world's collision objects (compared by
+  // pointer, never dereferenced: the body may have been deleted).
+  void dropDepartedAttachments(const btCollisionWorld& world);
+  // The substep is not run (reason: static text); the rope keeps its state.
+  void skipSubstep(const char* reason);
+  // An exception (message) was caught in this rope's substep: drops the trial and the queued loads so
+  // the rope keeps its last good state, and deactivates the substep's contacts.
+  void failSubstep(const char* message);
+  // Adds the substep's outcome to warnings_ (called once per substep, after endSubstep or skipSubstep).
+  void countSubstep();
   int findAttachment(int id) const;
+  void requireNewBodyPoint(double s, const btRigidBody& body) const;  // rope_object_failures.cpp
   // The springs of the body attachments for this substep (pending_), capped on light bodies.
   void queueAttachments(double h);
   // The rod's trial step with the attachments and the body contacts' active set (body_contacts.h).
@@ -147,6 +170,9 @@ class RopeObject {
   std::vector<PendingSpring> pending_;
   Rod::LoadQueue userLoads_;  // what the user queued on the rod for this substep
   BodyContacts bodyContacts_;
+  RopeWarnings warnings_;
+  std::string lastError_;
+  int droppedAttachments_ = 0;  // by dropDepartedAttachments in the current substep
 };
 
 }  // namespace rope::bullet

@@ -16,9 +16,9 @@ namespace rope::bullet {
 
 namespace {
 
-void requireFinitePoint(const char* name, const btVector3& p) {
+void requireFinitePoint(const std::string& name, const btVector3& p) {
   static const char* const kAxes[3] = {".x", ".y", ".z"};
-  for (int i = 0; i < 3; ++i) requireFinite(std::string(name) + kAxes[i], static_cast<double>(p[i]));
+  for (int i = 0; i < 3; ++i) requireFinite(name + kAxes[i], static_cast<double>(p[i]));
 }
 
 // Smallest root lambda in (0, 1] of |p(lambda) - c|^2 = r^2 for p = o + lambda d, entering the sphere.
@@ -165,8 +165,15 @@ std::optional<RayHit> rayTest(const RopeWorld& world, const btVector3& from, con
 
 std::vector<RopeContactHit> contactTest(const RopeWorld& world, const btCollisionObject& object, double margin) {
   requireNonNegative("margin", margin);
+  const btCollisionShape* shape = object.getCollisionShape();
+  if (shape == nullptr) throw InvalidArgument("object.shape", "null", "the collision object has no shape");
+  const btTransform& transform = object.getWorldTransform();
+  for (int row = 0; row < 3; ++row) {
+    requireFinitePoint("object.transform.basis[" + std::to_string(row) + "]", transform.getBasis()[row]);
+  }
+  requireFinitePoint("object.transform.origin", transform.getOrigin());
   btVector3 lo, hi;
-  object.getCollisionShape()->getAabb(object.getWorldTransform(), lo, hi);
+  shape->getAabb(transform, lo, hi);
   const btScalar grow = static_cast<btScalar>(margin);
   lo -= btVector3(grow, grow, grow);
   hi += btVector3(grow, grow, grow);

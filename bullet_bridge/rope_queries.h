@@ -41,8 +41,9 @@ struct RopeContactHit {
 };
 
 // Every contact between `object` (at its current transform; it need not be in the world) and the
-// ropes' capsules, up to the signed distance `margin` (m, >= 0). Throws InvalidArgument("margin")
-// or for a shape the narrowphase does not support (find_contacts.h).
+// ropes' capsules, up to the signed distance `margin` (m, >= 0). Throws InvalidArgument("margin"),
+// "object.shape" for an object without a shape or one the narrowphase does not support
+// (find_contacts.h), or "object.transform.*" for a non-finite transform.
 std::vector<RopeContactHit> contactTest(const RopeWorld& world, const btCollisionObject& object, double margin = 0.0);
 
 }  // namespace rope::bullet

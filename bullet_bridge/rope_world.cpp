@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "bullet_bridge/capsule_proxies.h"
+#include "bullet_bridge/guarded_call.h"
 #include "bullet_bridge/rope_debug_draw.h"
 #include "rope/common/error.h"
 
@@ -23,7 +24,13 @@ namespace rope::bullet {
 class RopeWorld::Action : public btActionInterface {
  public:
   explicit Action(RopeWorld& owner) : owner_(owner) {}
-  void updateAction(btCollisionWorld*, btScalar dt) override { owner_.substep(static_cast<double>(dt)); }
+  // Nothing may leave Bullet's step: each rope's failures are caught around its own calls in
+  // substep(); this catches what is left (an allocation failure, say), drops every rope's pending
+  // trial so that each keeps its last committed state, and counts it.
+  void updateAction(btCollisionWorld*, btScalar dt) override {
+    guardedCall([&] { owner_.substep(static_cast<double>(dt)); },
+                [&](const char* message) { owner_.recoverFromException(message); });
+  }
   void debugDraw(btIDebugDraw* drawer) override {
     if (owner_.debugDraw_ && drawer != nullptr) drawRopes(owner_, *drawer);
   }
@@ -50,7 +57,7 @@ RopeWorld::RopeWorld(btDiscreteDynamicsWorld& world) : world_(world), action_(st
 
 RopeWorld::~RopeWorld() {
   while (!ropes_.empty()) removeRope(*ropes_.back());
-  world_.removeAction(action_.get());
+  if (!worldGone_) world_.removeAction(action_.get());
 }
 
 bool RopeWorld::contains(const RopeObject& rope) const {
@@ -75,6 +82,9 @@ void RopeWorld::addRope(RopeObject& rope) {
 void RopeWorld::removeRope(RopeObject& rope) {
   const auto it = std::find(ropes_.begin(), ropes_.end(), &rope);
   if (it == ropes_.end()) throw InvalidArgument("rope", "not in this world", "must have been added to it");
+  // Bullet's world destructor clears the broadphase handles of the objects still in it: if it ran
+  // already, the world is gone and must not be touched again (rope_world.h, "Ownership").
+  if (rope.proxies().orphaned()) worldGone_ = true;
   rope.leaveWorld();
   rope.worldIndex_ = -1;
   ropes_.erase(it);
@@ -112,6 +122,68 @@ void RopeWorld::sortCapsulePairs() {
 }
 
 void RopeWorld::substep(double h) {
+  if (!(std::isfinite(h) && h > 0.0)) {
+    skipSubstep(h);
+    return;
+  }
+  findCandidates();
+  startReport(h);
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    RopeObject& rope = *ropes_[r];
+    // Bodies removed from the world (perhaps deleted) since the last substep lose their attachments
+    // before anything reads them.
+    rope.dropDepartedAttachments(world_);
+    std::vector<const btCollisionObject*>& list = candidates_[r];
+    // Deterministic order (pointer values are not): by the body's index in the world.
+    std::sort(list.begin(), list.end(), [](const btCollisionObject* a, const btCollisionObject* b) {
+      return a->getWorldArrayIndex() < b->getWorldArrayIndex();
+    });
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    if (rope.settings().gravitySource == BulletRopeSettings::GravitySource::kWorld) {
+      const btVector3 g = world_.getGravity() * static_cast<btScalar>(rope.settings().gravityScale);
+      const Vec3 gravity(static_cast<double>(g.x()), static_cast<double>(g.y()), static_cast<double>(g.z()));
+      // A non-finite world gravity leaves the rope's as it was (no arithmetic on it: FP traps).
+      if (std::isfinite(gravity.x()) && std::isfinite(gravity.y()) && std::isfinite(gravity.z())) {
+        rope.rod().setGravity(gravity);
+      }
+    }
+    guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+  }
+
+  solveRopeContacts(h);
+
+  for (RopeObject* rope : ropes_) {
+    guardedCall([&] { rope->endSubstep(h); }, [&](const char* message) { rope->failSubstep(message); });
+    rope->countSubstep();
+    report_.contacts.insert(report_.contacts.end(), rope->contacts().begin(), rope->contacts().end());
+    report_.ropes.push_back(rope->lastStep());
+  }
+  runCallback();
+}
+
+void RopeWorld::startReport(double h) {
+  report_.substep += 1;
+  report_.timeStep = h;
+  report_.failure = "";
+  report_.contacts.clear();
+  report_.ropes.clear();
+  report_.ropeContacts.clear();
+  report_.ropeContactFailure = "";
+}
+
+void RopeWorld::skipSubstep(double h) {
+  ++warnings_.skippedSubsteps;
+  startReport(h);
+  report_.failure = "the substep's time step is not finite and > 0: no rope stepped";
+  for (RopeObject* rope : ropes_) {
+    rope->skipSubstep(report_.failure);
+    rope->countSubstep();
+    report_.ropes.push_back(rope->lastStep());
+  }
+  runCallback();
+}
+
+void RopeWorld::findCandidates() {
   // Candidate bodies per rope from Bullet's pair cache. The cache may still hold pairs whose boxes
   // stopped overlapping (it cleans up lazily), so the overlap is checked again.
   const auto scanStart = std::chrono::steady_clock::now();
@@ -157,39 +229,23 @@ void RopeWorld::substep(double h) {
     if (rope->worldIndex_ < 0) continue;
     candidates_[static_cast<std::size_t>(rope->worldIndex_)].push_back(body);
   }
-
   report_.pairScanSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - scanStart).count();
-  report_.substep += 1;
-  report_.timeStep = h;
-  report_.contacts.clear();
-  report_.ropes.clear();
-  report_.ropeContacts.clear();
-  report_.ropeContactFailure = "";
-  for (std::size_t r = 0; r < ropes_.size(); ++r) {
-    std::vector<const btCollisionObject*>& list = candidates_[r];
-    // Deterministic order (pointer values are not): by the body's index in the world.
-    std::sort(list.begin(), list.end(), [](const btCollisionObject* a, const btCollisionObject* b) {
-      return a->getWorldArrayIndex() < b->getWorldArrayIndex();
-    });
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    RopeObject& rope = *ropes_[r];
-    if (rope.settings().gravitySource == BulletRopeSettings::GravitySource::kWorld) {
-      const btVector3 g = world_.getGravity() * static_cast<btScalar>(rope.settings().gravityScale);
-      const Vec3 gravity(static_cast<double>(g.x()), static_cast<double>(g.y()), static_cast<double>(g.z()));
-      // A non-finite world gravity leaves the rope's as it was (no arithmetic on it: FP traps).
-      if (std::isfinite(gravity.x()) && std::isfinite(gravity.y()) && std::isfinite(gravity.z())) {
-        rope.rod().setGravity(gravity);
-      }
-    }
-    rope.beginSubstep(list, h);
-  }
+}
 
+void RopeWorld::solveRopeContacts(double h) {
   // Rope-rope and self-contact, coupled into the trials of all ropes at once; pairs in a fixed order
   // (the pair cache's order depends on pointer hashes).
   const auto ropeStart = std::chrono::steady_clock::now();
   sortCapsulePairs();
-  const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
-  if (ropeContacts < 0) report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
+  guardedCall(
+      [&] {
+        const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
+        if (ropeContacts < 0) {
+          report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
+          ++warnings_.ropeContactFailures;
+        }
+      },
+      [&](const char* message) { failRopeContacts(message); });
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     int active = 0;
     double overlap = 0.0;
@@ -201,13 +257,45 @@ void RopeWorld::substep(double h) {
     ropes_[r]->recordRopeContacts(active, overlap);
   }
   report_.ropeContactSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
+}
 
+void RopeWorld::failRopeContacts(const char* message) {
+  // The coupled solve may have corrected some trials and not others: every rope that still has a
+  // trial drops it and keeps its state this substep.
+  ++warnings_.ropeContactFailures;
+  lastError_ = message;
+  report_.ropeContacts.clear();
+  report_.ropeContactFailure = "an exception was thrown in the rope-rope contact solve; the ropes kept their state";
   for (RopeObject* rope : ropes_) {
-    rope->endSubstep(h);
-    report_.contacts.insert(report_.contacts.end(), rope->contacts().begin(), rope->contacts().end());
-    report_.ropes.push_back(rope->lastStep());
+    if (rope->rod().hasTrial()) rope->failSubstep(message);
   }
-  if (callback_) callback_(report_);
+}
+
+void RopeWorld::runCallback() {
+  if (!callback_) return;
+  guardedCall([&] { callback_(report_); },
+              [&](const char* message) {
+                ++warnings_.callbackExceptions;
+                lastError_ = message;
+              });
+}
+
+void RopeWorld::recoverFromException(const char* message) noexcept {
+  ++warnings_.exceptions;
+  try {
+    lastError_ = message;
+  } catch (...) {
+    // out of memory for the message: the count is what matters
+  }
+  report_.failure = "an exception was thrown in the ropes' substep; the ropes kept their state (RopeWorld::lastError())";
+  for (RopeObject* rope : ropes_) {
+    if (!rope->rod().hasTrial()) continue;
+    try {
+      rope->failSubstep(message);
+    } catch (...) {
+      rope->rod().clearLoads();  // cannot throw: at least the trial is gone
+    }
+  }
 }
 
 }  // namespace rope::bullet

@@ -9,18 +9,39 @@
 // the rods and refreshes the capsule boxes for the next substep.
 //
 // Ownership: the user owns the Bullet world, the bodies, the RopeWorld and the RopeObjects. The
-// RopeWorld must be destroyed before the Bullet world (it removes its action and the ropes' capsules).
+// RopeWorld and the RopeObjects may be destroyed in either order (each unregisters itself).
+// The RopeWorld must be destroyed before the Bullet world (it removes its action and the ropes'
+// capsules), as every object a Bullet world holds must be removed from it before the world goes. If
+// the world is destroyed first anyway, a RopeWorld that held a rope at that moment notices it through
+// the rope's capsules (Bullet's world destructor clears their broadphase handles) and from then on
+// leaves the dead world alone, in its destructor too; a RopeWorld that held no rope then has nothing
+// to notice it by, and destroying it after its world is undefined behaviour.
+//
+// Failures: nothing is thrown out of stepSimulation. A rope whose substep fails (a failed solve, an
+// exception from rope code or the narrowphase) keeps its last good state; its RopeStepRecord says why
+// and RopeObject::warnings() counts it, and the other ropes and the Bullet world go on. A body with a
+// non-finite transform, velocity or mass is passed over for the substep and counted. A substep with
+// a time step that is not finite and > 0 is skipped; an exception thrown by the substep callback is
+// caught. Both are counted in warnings() (rope_warnings.h).
+//
+// Bodies that leave: a body a rope is attached to may be removed from the Bullet world (and deleted)
+// between steps. Each substep the RopeWorld checks, by comparing pointers with the world's collision
+// object array (never dereferencing them), that every attached body is still there, and drops the
+// attachments of one that is not (RopeStepRecord::droppedAttachments, RopeWarnings::droppedAttachments).
+// Contacts are found afresh each substep from Bullet's pair cache, which forgets removed bodies.
 
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/contact_report.h"
 #include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/rope_rope_contact.h"
+#include "bullet_bridge/rope_warnings.h"
 
 namespace rope::bullet {
 
@@ -45,9 +66,15 @@ class RopeWorld {
   // True if the object is one of the Bullet world's collision objects (and not a rope capsule).
   bool containsBody(const btCollisionObject& object) const;
 
-  // The contacts and rope states of the last substep; the callback (if set) sees every substep.
+  // The contacts and rope states of the last substep; the callback (if set) sees every substep. An
+  // exception the callback throws is caught and counted (warnings().callbackExceptions, lastError()).
   const ContactReport& lastReport() const { return report_; }
   void setSubstepCallback(std::function<void(const ContactReport&)> callback) { callback_ = std::move(callback); }
+
+  // Warnings counted since the RopeWorld was created (rope_warnings.h); each rope counts its own in
+  // RopeObject::warnings(). lastError(): the message of the last exception caught at world level.
+  const RopeWorldWarnings& warnings() const { return warnings_; }
+  const std::string& lastError() const { return lastError_; }
 
   // Whether btDiscreteDynamicsWorld::debugDrawWorld also draws the ropes (rope_debug_draw.h). Default on.
   void setDebugDrawEnabled(bool enabled) { debugDraw_ = enabled; }
@@ -56,6 +83,14 @@ class RopeWorld {
  private:
   class Action;
   void substep(double h);
+  // The parts of substep(); each rope's own failures are caught around its calls.
+  void startReport(double h);
+  void skipSubstep(double h);
+  void findCandidates();
+  void solveRopeContacts(double h);
+  void runCallback();
+  void failRopeContacts(const char* message);
+  void recoverFromException(const char* message) noexcept;
 
   btDiscreteDynamicsWorld& world_;
   std::unique_ptr<Action> action_;
@@ -69,7 +104,10 @@ class RopeWorld {
   RopeRopeContacts ropeRopeContacts_;
   ContactReport report_;
   std::function<void(const ContactReport&)> callback_;
+  RopeWorldWarnings warnings_;
+  std::string lastError_;
   bool debugDraw_ = true;
+  bool worldGone_ = false;  // a rope's capsules showed that the Bullet world was destroyed
 };
 
 }  // namespace rope::bullet

@@ -64,6 +64,7 @@ set(SPLINEROPE_BULLET_BRIDGE_API_HEADERS
   bullet_bridge/capsule.h
   bullet_bridge/capsule_proxies.h
   bullet_bridge/bullet_precision.h
+  bullet_bridge/rope_warnings.h
 )
 set(SPLINEROPE_BULLET_BRIDGE_SUPPORT_HEADERS
   bullet_bridge/contact_response.h   # via attachment.h and rope_rope_contact.h
@@ -81,6 +82,10 @@ set(SPLINEROPE_BULLET_BRIDGE_INTERNAL_HEADERS
   bullet_bridge/segment_convex_distance.h
   bullet_bridge/segment_segment_distance.h
   bullet_bridge/segment_triangle_distance.h
+  bullet_bridge/bullet_math.h
+  bullet_bridge/body_state.h
+  bullet_bridge/world_membership.h
+  bullet_bridge/guarded_call.h
 )
 
 set(SPLINEROPE_RENDER_API_HEADERS

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "rope/common/error.h"
+#include "demos/scenes/scene_state.h"
 
 namespace rope::demos {
 
@@ -219,5 +220,7 @@ std::optional<render::Camera> CapstanScene::camera() const {
   camera.eye = camera.target + Vec3(0.25, 0.15, 0.9);
   return camera;
 }
+
+void CapstanScene::appendState(std::vector<double>& state) const { appendWorldState(physics_, state); }
 
 }  // namespace rope::demos

@@ -82,6 +82,7 @@ class CapstanScene : public DemoScene {
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
+  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const CapstanSceneSettings& settings() const { return settings_; }

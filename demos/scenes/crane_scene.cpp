@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "demos/scenes/scene_state.h"
 #include "rope/common/error.h"
 
 namespace rope::demos {
@@ -95,6 +96,10 @@ std::optional<render::Camera> CraneScene::camera() const {
   camera.target = Vec3(0.0, settings_.topHeight - 0.6 * settings_.ropeLength, 0.0);
   camera.eye = camera.target + Vec3(0.8, 0.4, 2.4);
   return camera;
+}
+
+void CraneScene::appendState(std::vector<double>& state) const {
+  appendWorldState(physics_, state);
 }
 
 }  // namespace rope::demos

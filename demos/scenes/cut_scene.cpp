@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "demos/scenes/crane_scene.h"
+#include "demos/scenes/scene_state.h"
 #include "rope/common/error.h"
 
 namespace rope::demos {
@@ -92,6 +93,10 @@ std::optional<render::Camera> CutScene::camera() const {
   camera.target = Vec3(0.2, settings_.topHeight - 0.9 * settings_.ropeLength, 0.0);
   camera.eye = camera.target + Vec3(0.4, 0.3, 2.6);
   return camera;
+}
+
+void CutScene::appendState(std::vector<double>& state) const {
+  appendWorldState(physics_, state);
 }
 
 }  // namespace rope::demos

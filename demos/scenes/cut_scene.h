@@ -36,6 +36,7 @@ class CutScene : public DemoScene {
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
+  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const bullet::RopeObject& upper() const { return *upper_; }

@@ -40,6 +40,9 @@ class DemoScene {
   virtual StepMeasurements measure() const = 0;
   // Adds the current geometry to a draw list (no GL involved).
   virtual void draw(render::Scene& scene) const = 0;
+  // Appends the scene's full dynamic state (rods, tractrix ropes, Bullet bodies: scene_state.h) to
+  // `state`, for the golden determinism hash (tests/reliability/golden_hash_test.cpp).
+  virtual void appendState(std::vector<double>& state) const = 0;
   // The camera for the current state (asked before every frame, so it may follow the action), or
   // nullopt to frame the first frame automatically and keep that camera.
   virtual std::optional<render::Camera> camera() const { return std::nullopt; }

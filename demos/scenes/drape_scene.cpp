@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "demos/scenes/scene_state.h"
 #include "rope/common/error.h"
 
 namespace rope::demos {
@@ -97,6 +98,10 @@ std::optional<render::Camera> DrapeScene::camera() const {
   camera.target = Vec3(0.0, settings_.obstacleTop - 0.1, 0.0);
   camera.eye = camera.target + Vec3(0.5, 0.45, 1.6);
   return camera;
+}
+
+void DrapeScene::appendState(std::vector<double>& state) const {
+  appendWorldState(physics_, state);
 }
 
 }  // namespace rope::demos

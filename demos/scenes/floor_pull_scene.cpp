@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "rope/common/error.h"
+#include "demos/scenes/scene_state.h"
 
 namespace rope::demos {
 
@@ -89,5 +90,7 @@ std::optional<render::Camera> FloorPullScene::camera() const {
   camera.eye = camera.target + Vec3(0.0, 0.5, 1.2);
   return camera;
 }
+
+void FloorPullScene::appendState(std::vector<double>& state) const { appendWorldState(physics_, state); }
 
 }  // namespace rope::demos

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "demos/scenes/ground.h"
+#include "demos/scenes/scene_state.h"
 #include "render/rope_drawing.h"
 #include "rope/common/error.h"
 
@@ -125,6 +126,10 @@ std::optional<render::Camera> HangScene::camera() const {
   camera.target = Vec3(0.0, settings_.pinHeight - 0.45 * reach, 0.0);
   camera.eye = camera.target + Vec3(0.35, 0.25, 2.6) * reach;
   return camera;
+}
+
+void HangScene::appendState(std::vector<double>& state) const {
+  appendRodState(rod_, state);
 }
 
 }  // namespace rope::demos

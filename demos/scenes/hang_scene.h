@@ -29,6 +29,7 @@ class HangScene : public DemoScene {
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
+  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const Rod& rod() const { return rod_; }

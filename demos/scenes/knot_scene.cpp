@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "demos/scenes/scene_state.h"
 #include "render/primitive_mesh.h"
 #include "rope/common/error.h"
 #include "rope/spline/arc_length.h"
@@ -196,6 +197,10 @@ std::optional<render::Camera> KnotScene::camera() const {
   camera.target = rod.position(0.5 * (rod.beginParameter() + rod.endParameter()));
   camera.eye = camera.target + Vec3(0.2, 0.06, 0.08);
   return camera;
+}
+
+void KnotScene::appendState(std::vector<double>& state) const {
+  appendWorldState(physics_, state);
 }
 
 }  // namespace rope::demos

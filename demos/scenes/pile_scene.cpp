@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "demos/scenes/knot_scene.h"
+#include "demos/scenes/scene_state.h"
 #include "rope/common/error.h"
 #include "rope/spline/arc_length.h"
 #include "rope/spline/curve_interpolation.h"
@@ -126,6 +127,10 @@ std::optional<render::Camera> PileScene::camera() const {
   camera.target = mean / (kSamples + 1);
   camera.eye = camera.target + Vec3(0.22, 0.2, 0.32);
   return camera;
+}
+
+void PileScene::appendState(std::vector<double>& state) const {
+  appendWorldState(physics_, state);
 }
 
 }  // namespace rope::demos

@@ -38,6 +38,7 @@ class PileScene : public DemoScene {
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
+  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const bullet::RopeObject& rope() const { return *rope_; }

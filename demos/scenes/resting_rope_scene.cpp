@@ -5,6 +5,7 @@
 #include <string>
 
 #include "rope/common/error.h"
+#include "demos/scenes/scene_state.h"
 
 namespace rope::demos {
 
@@ -146,5 +147,7 @@ std::optional<render::Camera> RestingRopeScene::camera() const {
   camera.eye = Vec3(0.3, 0.6, 1.2 + settings_.spacing * settings_.ropeCount);
   return camera;
 }
+
+void RestingRopeScene::appendState(std::vector<double>& state) const { appendWorldState(physics_, state); }
 
 }  // namespace rope::demos

@@ -40,6 +40,7 @@ class RestingRopeScene : public DemoScene {
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
+  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   int ropeCount() const { return static_cast<int>(ropes_.size()); }

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "demos/scenes/scene_state.h"
 #include "render/rope_drawing.h"
 #include "rope/common/error.h"
 
@@ -112,6 +113,11 @@ std::optional<render::Camera> SweepScene::camera() const {
   camera.target = Vec3(0.0, 0.0, 0.0);
   camera.eye = Vec3(0.9, 1.3, 1.9);
   return camera;
+}
+
+void SweepScene::appendState(std::vector<double>& state) const {
+  appendWorldState(physics_, state);
+  appendTractrixState(rope_->tractrix(), state);
 }
 
 }  // namespace rope::demos

@@ -34,6 +34,7 @@ class SweepScene : public DemoScene {
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
+  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const bullet::KinematicRope& rope() const { return *rope_; }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "demos/scenes/ground.h"
+#include "demos/scenes/scene_state.h"
 #include "render/rope_drawing.h"
 #include "rope/common/error.h"
 
@@ -111,6 +112,11 @@ std::optional<render::Camera> TractrixScene::camera() const {
   camera.target = Vec3(0.0, 0.0, 0.1);
   camera.eye = Vec3(0.0, 2.1, 2.4);
   return camera;
+}
+
+void TractrixScene::appendState(std::vector<double>& state) const {
+  appendTractrixState(polyline_, state);
+  appendTractrixState(spline_, state);
 }
 
 }  // namespace rope::demos

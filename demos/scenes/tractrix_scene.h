@@ -30,6 +30,7 @@ class TractrixScene : public DemoScene {
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
+  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const TractrixRope& polylineRope() const { return polyline_; }

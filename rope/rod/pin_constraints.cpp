@@ -65,6 +65,24 @@ ConstraintRows clampTangentRows(const KnotVector& knots, const PointList& points
   return row;
 }
 
+bool pinRowsIndependent(const KnotVector& knots, const std::vector<double>& sortedParameters) {
+  const int d = knots.degree();
+  int previous = -1;  // basis function matched to the previous pin
+  BasisValues basis;
+  for (const double s : sortedParameters) {
+    const int k = knots.findSpan(s);
+    evaluateBasis(knots, k, s, 0, basis);
+    int matched = -1;
+    for (int a = 0; a <= d && matched < 0; ++a) {
+      const int i = k - d + a;
+      if (i > previous && basis.d[0][static_cast<size_t>(a)] != 0.0) matched = i;
+    }
+    if (matched < 0) return false;
+    previous = matched;
+  }
+  return true;
+}
+
 bool ConstrainedSolver::solve(const SymmetricBandedMatrix& factor, const std::vector<ConstraintRows>& rows,
                               double* x) {
   ready_ = false;

@@ -75,6 +75,13 @@ ConstraintRows clampTangentRows(const KnotVector& knots, const PointList& points
 // deterministically from the direction alone.
 void orthonormalComplement(const Vec3& direction, Vec3& e1, Vec3& e2);
 
+// Whether pins at these parameters (sorted ascending, distinct) give independent rows: by the
+// Schoenberg-Whitney theorem the rows b(s_1) .. b(s_m) of a spline's basis are independent exactly
+// when basis functions i_1 < ... < i_m exist with b_{i_j}(s_j) != 0 (de Boor, "Total positivity of the
+// spline collocation matrix", Indiana Univ. Math. J. 25 (1976) 541-551), found greedily in O(m d).
+// False e.g. for more pins inside one knot span than it has basis functions (degree + 1).
+bool pinRowsIndependent(const KnotVector& knots, const std::vector<double>& sortedParameters);
+
 class ConstrainedSolver {
  public:
   // Only scratch space lives here: copies start empty (Eigen's LLT is not meant to be copied before

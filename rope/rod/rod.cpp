@@ -97,6 +97,9 @@ Rod Rod::fromSegment(const RodSettings& settings, const Vec3& a, const Vec3& b) 
 
 Rod Rod::fromCurve(const RodSettings& settings, const KnotVector& knots, const PointList& points,
                    RestShape restShape) {
+  if (restShape != RestShape::kScaledToRestLength && restShape != RestShape::kAsGiven) {
+    throw InvalidArgument("rest", std::to_string(static_cast<int>(restShape)), "is not a Rod::RestShape");
+  }
   PointList rest = points;
   if (restShape == RestShape::kScaledToRestLength) {
     const double length = arcLength(knots, points, knots.validBegin(), knots.validEnd());
@@ -282,6 +285,7 @@ int Rod::addPin(double s, const Vec3& target, const Vec3& direction) {
     throw InvalidArgument(added.isClamp() ? "clamps" : "pins", std::to_string(rows) + " constraint rows",
                           "more than the rod's 3 x " + std::to_string(controlPointCount()) + " degrees of freedom");
   }
+  requireIndependentPin(s);
   ++nextPinId_;
   pins_.push_back(added);
   trialValid_ = false;

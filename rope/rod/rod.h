@@ -80,7 +80,8 @@ class Rod {
   // |b - a| != restLength starts stretched or compressed.
   static Rod fromSegment(const RodSettings& settings, const Vec3& a, const Vec3& b);
   // Rope through the polyline (interpolated by a clamped spline of settings.degree, one control point
-  // per polyline point): it can be created bent and slack.
+  // per polyline point): it can be created bent and slack. Like fromControlPoints, throws
+  // InvalidArgument("rest", ...) for a value outside RestShape.
   static Rod fromPolyline(const RodSettings& settings, const PointList& points,
                           RestShape rest = RestShape::kScaledToRestLength);
   // Explicit control points and knots; the rest curve is derived from them ...
@@ -132,8 +133,10 @@ class Rod {
 
   // ---- pins ----
   // Holds C(s) at target (default: where it is now). Throws InvalidArgument for s outside the valid
-  // range or NaN ("s"), a pin already at s ("s"), a non-finite target ("target"), or more pins than
-  // control points ("pins"). Returns the pin's id.
+  // range or NaN ("s"), a pin already at s or closer to another pin than settings.minKnotSpacing of
+  // rest length ("s"), a pin the spline has no freedom left for around s (pin rows dependent,
+  // pinRowsIndependent) ("s"), a non-finite target ("target"), or more pins than control points
+  // ("pins"): each of those would make every later step fail. Returns the pin's id.
   int pin(double s, const Vec3& target);
   int pin(double s);
   // Target for the end of the next step (moving pins). Throws for an unknown id ("id") or non-finite target.
@@ -198,13 +201,21 @@ class Rod {
 
   // ---- explicit refinement and cutting ----
   // Exact insertion ([A] §3.1): positions and velocities along the curve do not change. Explicit edits
-  // are not bound by min/maxControlPoints (those limit adaptivity).
+  // are not bound by min/maxControlPoints (those limit adaptivity). Throws InvalidArgument("s", ...)
+  // for s outside the open range, at full multiplicity, or (a new knot value) closer than
+  // settings.minKnotSpacing of rest length to a neighbouring knot: so short a span makes every
+  // later step fail.
   void insertKnot(double s);
   // Removes one occurrence of the knot s ([A] eq. 7); returns how much the fields moved.
   RemovalReport removeKnot(double s);
-  // Cuts at s (strictly inside, no pin exactly at s): two independent rods that inherit positions,
+  // Cuts at cutPoint(s) (no pin exactly there): two independent rods that inherit positions,
   // velocities, rest state, pins and queued loads on their side. This rod is unchanged.
   std::pair<Rod, Rod> cut(double s) const;
+  // Where cut(s) cuts: s itself, or the knot within settings.minKnotSpacing (rest length) of s if
+  // there is one (a cut beside a knot would leave a span too short to step). Throws
+  // InvalidArgument("s", ...) for s outside the rope, NaN, or leaving a piece shorter than
+  // settings.minKnotSpacing.
+  double cutPoint(double s) const;
 
  private:
   struct PointLoad {
@@ -255,6 +266,10 @@ class Rod {
   int addPin(double s, const Vec3& target, const Vec3& direction);
   // Appends the knots next to each clamp, so that adaptivity keeps the tangent there exact.
   void addClampNeighbours(std::vector<double>& interactions) const;
+  // rod_edit_checks.cpp
+  void requireIndependentPin(double s) const;
+  void requireResolvableKnot(double s) const;
+  double restDistance(double a, double b) const;  // rest arc length between two parameters, m
   bool assembleAndSolve(double h, StepReport& report);
   void adapt(StepReport& report);
   void insertKnotUnchecked(double s);

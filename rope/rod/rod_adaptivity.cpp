@@ -26,6 +26,7 @@ void Rod::insertKnotUnchecked(double s) {
 
 void Rod::insertKnot(double s) {
   validateParameter(s);
+  requireResolvableKnot(s);
   insertKnotUnchecked(s);  // planKnotInsertion validates the rest (strictly inside, multiplicity)
 }
 

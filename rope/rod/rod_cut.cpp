@@ -11,8 +11,8 @@
 
 namespace rope {
 
-std::pair<Rod, Rod> Rod::cut(double s) const {
-  validateParameter(s);
+std::pair<Rod, Rod> Rod::cut(double requested) const {
+  const double s = cutPoint(requested);
   for (const Pin& p : pins_) {
     if (p.parameter == s) throw InvalidArgument("s", formatValue(s), "a pin is at the cut");
   }

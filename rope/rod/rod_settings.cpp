@@ -1,6 +1,7 @@
 #include "rope/rod/rod_settings.h"
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "rope/common/error.h"
@@ -10,6 +11,27 @@ namespace rope {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+
+void requireDouble(const char* name, long double value, const std::string& shown) {
+  if (!(value <= static_cast<long double>(std::numeric_limits<double>::max()))) {
+    throw InvalidArgument(name, shown, "overflows a double");
+  }
+}
+
+// The derived quantities of validated (finite, positive) fields, without overflowing on the way.
+void requireRepresentable(const RodSettings& s) {
+  const long double r = s.radius;
+  const long double area = static_cast<long double>(kPi) * r * r;
+  requireDouble("settings.radius", area, formatValue(s.radius) + " (area pi r^2)");
+  if (s.linearDensity == RodSettings::kDerived) {
+    requireDouble("settings.materialDensity", s.materialDensity * area, formatValue(s.materialDensity) + " (times the area)");
+  }
+  requireDouble("settings.youngsModulus", s.youngsModulus * area, formatValue(s.youngsModulus) + " (times the area)");
+  if (s.bendingStiffness == RodSettings::kDerived) {
+    requireDouble("settings.youngsModulus", s.youngsModulus * area * area / (4.0L * static_cast<long double>(kPi)),
+                  formatValue(s.youngsModulus) + " (times the area moment pi r^4 / 4)");
+  }
+}
 
 void requireCount(const std::string& name, int value, int lowest) {
   if (value < lowest) {
@@ -53,6 +75,10 @@ void RodSettings::validate() const {
     throw InvalidArgument("settings.degree", std::to_string(degree),
                           "must be in 1.." + std::to_string(kMaxDegree));
   }
+  if (stretchingQuadrature != StretchingQuadrature::kExact && stretchingQuadrature != StretchingQuadrature::kLockingFree) {
+    throw InvalidArgument("settings.stretchingQuadrature", std::to_string(static_cast<int>(stretchingQuadrature)),
+                          "is not a StretchingQuadrature");
+  }
   requireCount("settings.minControlPoints", minControlPoints, degree + 1);
   requireCount("settings.maxControlPoints", maxControlPoints, minControlPoints);
   requireCount("settings.initialControlPoints", initialControlPoints, minControlPoints);
@@ -69,7 +95,10 @@ void RodSettings::validate() const {
   requirePositive("settings.removalErrorBound", removalErrorBound);
   requirePositive("settings.removalVelocityErrorBound", removalVelocityErrorBound);
   requirePositive("settings.minKnotSpacing", minKnotSpacing);
-  // Derived quantities must be usable too (e.g. a radius so small that EA underflows to 0).
+  // Derived quantities must be usable too (e.g. a radius so small that EA underflows to 0), and
+  // computing them must not overflow (a radius of 1e200 m): checked in long double first, whose range
+  // holds any product of these doubles.
+  requireRepresentable(*this);
   requirePositive("settings.linearDensity (derived)", effectiveLinearDensity());
   requirePositive("settings.youngsModulus * area", axialStiffness());
   requireNonNegative("settings.bendingStiffness (derived)", effectiveBendingStiffness());

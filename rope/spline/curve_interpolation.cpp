@@ -55,6 +55,10 @@ class BandMatrix {
 }  // namespace
 
 Interpolation interpolatePolyline(const PointList& points, int degree, Parametrization parametrization) {
+  if (parametrization != Parametrization::kChordLength && parametrization != Parametrization::kCentripetal) {
+    throw InvalidArgument("parametrization", std::to_string(static_cast<int>(parametrization)),
+                          "is not a Parametrization");
+  }
   if (degree < 1 || degree > kMaxDegree) {
     throw InvalidArgument("degree", std::to_string(degree), "must be in 1.." + std::to_string(kMaxDegree));
   }

@@ -18,7 +18,7 @@ struct Interpolation {
 };
 
 // Throws InvalidArgument: "degree" outside 1..kMaxDegree, "points.size()" < degree+1,
-// "points[i]" non-finite or coinciding with points[i-1].
+// "points[i]" non-finite or coinciding with points[i-1], "parametrization" not a Parametrization.
 Interpolation interpolatePolyline(const PointList& points, int degree = 3,
                                   Parametrization parametrization = Parametrization::kChordLength);
 

@@ -73,12 +73,21 @@ double shortfall(LengthAngleModel model, double theta) {
 
 }  // namespace
 
+static void requireModel(LengthAngleModel model) {
+  if (model != LengthAngleModel::kQuadratic && model != LengthAngleModel::kCubicOneAngle &&
+      model != LengthAngleModel::kCubicBothAngles) {
+    throw InvalidArgument("model", std::to_string(static_cast<int>(model)), "is not a LengthAngleModel");
+  }
+}
+
 double pieceLengthShortfall(LengthAngleModel model, double includedAngle) {
+  requireModel(model);
   requireAngle(includedAngle);
   return shortfall(model, includedAngle);
 }
 
 double angleForLengthShortfall(LengthAngleModel model, double target) {
+  requireModel(model);
   requireFinite("shortfall", target);
   const double largest = shortfall(model, kMinThresholdAngle);
   if (!(target > 0.0 && target < largest)) {
@@ -100,6 +109,7 @@ double angleForLengthShortfall(LengthAngleModel model, double target) {
 }
 
 AngleThresholds thresholdsForLengthError(double tolerance, double mergeFraction, LengthAngleModel model) {
+  requireModel(model);
   requireFinite("mergeFraction", mergeFraction);
   if (!(mergeFraction > 0.0 && mergeFraction < 1.0)) {
     throw InvalidArgument("mergeFraction", formatValue(mergeFraction), "must be in (0, 1)");

@@ -15,6 +15,8 @@ enum class LengthAngleModel {
   kCubicBothAngles,  // cubic piece over P1..P4, both angles equal (planar, turning the same way)
 };
 
+// Every function below throws InvalidArgument("model", ...) for a value outside LengthAngleModel.
+
 // Smallest angle the threshold helper accepts: below it a "threshold" no longer describes a rope.
 constexpr double kMinThresholdAngle = 0.08726646259971647;  // 5 degrees
 

@@ -218,14 +218,35 @@ TEST(Rod, NonFiniteStepIsReportedAndChangesNothing) {
   EXPECT_TRUE(rod.step(1.0 / 60).ok);
 }
 
-TEST(Rod, NearlyCoincidentPinsAreReportedAsAFailedStep) {
+// Pins one rounding step apart were accepted and then every step failed ("pin constraints are
+// dependent"); now the second pin is refused, the rod unchanged. So is a pin closer than
+// minKnotSpacing, or one more pin than the spline has basis functions for in a span.
+TEST(Rod, NearlyCoincidentPinsAreRefused) {
   Rod rod = Rod::fromSegment(softSettings(), Vec3(0, 0, 0), Vec3(1, 0, 0));
   rod.pin(0.5);
-  rod.pin(std::nextafter(0.5, 1.0), Vec3(0.5, 0.1, 0.0));  // contradicts the first pin
   const RodSnapshot before(rod);
-  const StepReport report = rod.step(1.0 / 60);
-  EXPECT_FALSE(report.ok);
-  EXPECT_TRUE(sameState(before, RodSnapshot(rod)));
+  for (const double s : {std::nextafter(0.5, 1.0), 0.5 - 0.999 * rod.settings().minKnotSpacing}) {
+    try {
+      rod.pin(s, Vec3(0.5, 0.1, 0.0));
+      FAIL() << "accepted s = " << s;
+    } catch (const InvalidArgument& error) {
+      EXPECT_EQ(error.parameter(), "s");
+    }
+    EXPECT_TRUE(sameState(before, RodSnapshot(rod)));
+  }
+  rod.pin(0.5 + 1.001 * rod.settings().minKnotSpacing);  // just far enough
+  EXPECT_TRUE(rod.step(1.0 / 60).ok);
+
+  // Five pins inside one span of a cubic (four basis functions there): the fifth is refused.
+  RodSettings coarse = softSettings();
+  coarse.adaptive = false;
+  coarse.initialControlPoints = 8;  // five spans of 0.2
+  Rod sparse = Rod::fromSegment(coarse, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  for (int p = 0; p < 4; ++p) sparse.pin(0.02 + 0.04 * p);
+  const RodSnapshot four(sparse);
+  EXPECT_THROW(sparse.pin(0.18), InvalidArgument);
+  EXPECT_TRUE(sameState(four, RodSnapshot(sparse)));
+  EXPECT_TRUE(sparse.step(1.0 / 60).ok);
 }
 
 TEST(Rod, PinsHoldFixedAndMovingTargetsWithoutDrift) {

@@ -1,0 +1,26 @@
+#pragma once
+// Whether a Bullet body's state is usable by the ropes this substep. A user's body can end up with a
+// NaN velocity or transform (an explosion elsewhere in the scene, a bad setLinearVelocity); a rope
+// that read it would put NaN into its own step and hand NaN impulses back. Such a body is passed
+// over for the substep and counted (RopeStepRecord::skippedBodies,
+// KinematicRopeStepReport::unsupportedBodies) instead.
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include "bullet_bridge/bullet_precision.h"
+#include "rope/common/types.h"
+
+namespace rope::bullet {
+
+// Transform, linear and angular velocity, inverse mass and inverse inertia all finite.
+bool bodyStateFinite(const btRigidBody& body);
+
+// The body as a dynamic rigid body that takes impulses, or nullptr for static and kinematic objects
+// and for collision objects that are not rigid bodies.
+btRigidBody* dynamicBody(const btCollisionObject& object);
+
+// Velocity of the body's material point at `point` (world frame), m/s; zero for a collision object
+// that is not a rigid body.
+Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point);
+
+}  // namespace rope::bullet

@@ -7,10 +7,13 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/LU>
+
 #include "bullet_bridge/body_state.h"
 #include "bullet_bridge/bullet_math.h"
 #include "bullet_bridge/find_contacts.h"
 #include "rope/common/error.h"
+#include "rope/spline/bspline_basis.h"
 
 namespace rope::bullet {
 
@@ -34,6 +37,9 @@ Vec3 tangential(const Vec3& v, const Vec3& normal) { return v - normal * normal.
 constexpr double kConeTolerance = 1e-6;
 // A sliding sample's friction bound is re-estimated when its end-of-step normal force differs by more.
 constexpr double kNormalForceTolerance = 0.05;
+// Most sliding samples whose friction bounds are solved exactly (solveSlidingBounds: an O(m^3) dense
+// solve); beyond, the bounds are re-estimated pass by pass.
+constexpr int kMaxExactBounds = 192;
 
 }  // namespace
 
@@ -197,7 +203,81 @@ void BodyContacts::queue(Rod& rod) const {
   }
 }
 
-bool BodyContacts::update(const Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step) {
+bool BodyContacts::solveSlidingBounds(Rod& rod, double h) {
+  // A sliding sample i pulls the rope with -mu_i f_i d_i, the bound f_i fixed in the trial. The normal
+  // force each sample ends the step with is affine in the trial (endOfStepForce):
+  //   N_j = N_j^trial + g_j . du(s_j),   g_j = -(h K_j + D_j)^T n_j,
+  // and changing the bounds by delta changes the impulses by -mu_i h delta_i d_i, so
+  //   du(s_j) = -sum_i mu_i h delta_i U_ji,   U_ji = velocity at s_j per unit impulse along d_i at s_i
+  // (Rod::trialImpulseResponse, through the trial's own factor). Coulomb's law wants f = N(f):
+  //   (I - M) f = N^trial - M f^used,   M_ji = -mu_i h g_j . U_ji    (docs/method.md §11, active set).
+  // Iterating f instead (one trial per pass with the last pass's N) multiplies the error by M, which
+  // round a support behaves like the capstan's own Volterra operator mu theta: the passes diverged for
+  // mu theta >= pi and a rope that should hold at 0.9 exp(mu theta) slid. Cost: one O(n) solve per
+  // sliding sample and the small dense system.
+  sliding_.clear();
+  for (std::size_t i = 0; i < samples_.size(); ++i) {
+    const Sample& sample = samples_[i];
+    if (sample.active && sample.friction.sliding && sample.law.friction > 0.0) sliding_.push_back(static_cast<int>(i));
+  }
+  const int m = static_cast<int>(sliding_.size());
+  if (m == 0 || m > kMaxExactBounds) return false;
+  const int n3 = 3 * rod.controlPointCount();
+  responses_.resize(static_cast<std::size_t>(m) * static_cast<std::size_t>(n3));
+  for (int i = 0; i < m; ++i) {
+    const Sample& sample = samples_[static_cast<std::size_t>(sliding_[static_cast<std::size_t>(i)])];
+    rod.trialImpulseResponse(sample.geometry.s, sample.friction.direction,
+                             &responses_[static_cast<std::size_t>(i) * static_cast<std::size_t>(n3)]);
+  }
+  const KnotVector& knots = rod.knots();
+  const int degree = knots.degree();
+  BasisValues basis;
+  boundSystem_.setIdentity(m, m);
+  boundRhs_.resize(m);
+  for (int j = 0; j < m; ++j) {
+    const Sample& sample = samples_[static_cast<std::size_t>(sliding_[static_cast<std::size_t>(j)])];
+    const double s = sample.geometry.s;
+    const int span = knots.findSpan(s);
+    evaluateBasis(knots, span, s, 0, basis);
+    const int first = span - degree;
+    const Vec3 gradient = -(h * sample.spring.stiffness + sample.spring.damping).transpose() * sample.normal;
+    const Vec3 uNew = rod.trialVelocity(s);
+    double rhs = endOfStepForce(sample.spring, sample.ropeVelocity, uNew, h).dot(sample.normal);
+    for (int i = 0; i < m; ++i) {
+      const Sample& other = samples_[static_cast<std::size_t>(sliding_[static_cast<std::size_t>(i)])];
+      const double* response = &responses_[static_cast<std::size_t>(i) * static_cast<std::size_t>(n3)];
+      Vec3 velocity = Vec3::Zero();
+      for (int a = 0; a <= degree; ++a) {
+        const double b = basis.d[0][static_cast<std::size_t>(a)];
+        const double* r = response + 3 * (first + a);
+        velocity += b * Vec3(r[0], r[1], r[2]);
+      }
+      const double coupling = -other.law.friction * h * gradient.dot(velocity);
+      boundSystem_(j, i) -= coupling;
+      rhs -= coupling * other.friction.normalForce;
+    }
+    boundRhs_(j) = rhs;
+  }
+  const Eigen::VectorXd bounds = boundSystem_.partialPivLu().solve(boundRhs_);
+  if (!bounds.allFinite()) return false;
+  correction_.assign(static_cast<std::size_t>(n3), 0.0);
+  for (int i = 0; i < m; ++i) {
+    Sample& sample = samples_[static_cast<std::size_t>(sliding_[static_cast<std::size_t>(i)])];
+    // A negative bound is a sample that lifts off: bounded by zero here, released by update().
+    const double bound = std::max(0.0, bounds(i));
+    const double impulse = -sample.law.friction * h * (bound - sample.friction.normalForce);
+    const double* response = &responses_[static_cast<std::size_t>(i) * static_cast<std::size_t>(n3)];
+    for (int c = 0; c < n3; ++c) correction_[static_cast<std::size_t>(c)] += impulse * response[c];
+    sample.friction.normalForce = bound;
+    sample.spring = sampleSpring(sample.law, static_cast<double>(sample.geometry.contact.distance), sample.normal,
+                                 sample.ropeVelocity, sample.bodyVelocity, h, sample.friction);
+  }
+  rod.correctTrial(correction_.data());
+  return true;
+}
+
+bool BodyContacts::update(Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step) {
+  solveSlidingBounds(rod, h);
   bool changed = false;
   for (Sample& sample : samples_) {
     if (!sample.active) continue;

@@ -4,10 +4,12 @@
 //   gather()  finds the touching stretches of the rope's capsules against the candidate bodies, their
 //             quadrature samples, and each sample's law and friction state at the rod's current state;
 //   queue()   puts the active samples' springs on the rod (Rod::addSpringSample: no knots);
-//   update()  after a trial step, makes contact unilateral and friction Coulomb's: releases samples
-//             whose end-of-step normal force pulls, switches sticking samples whose spring needs more
-//             than mu f_n to sliding, and re-bounds sliding friction by the end-of-step normal force
-//             where it moved by more than 5 %; true if the trial must be solved again;
+//   update()  after a trial step, makes contact unilateral and friction Coulomb's: gives sliding
+//             samples the friction bound mu f_n of the normal force they end the step with (solved
+//             exactly, with the trial corrected), releases samples whose end-of-step normal force
+//             pulls, switches sticking samples whose spring needs more than mu f_n to sliding, and
+//             re-bounds sliding friction where the normal force still moved by more than 5 %; true
+//             if the trial must be solved again;
 //   finish()  after the final trial: the equal and opposite impulse on every dynamic body, the
 //             records, the anchors for the next substep, and the knots the contact geometry needs.
 //
@@ -27,6 +29,8 @@
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <functional>
+
+#include <Eigen/Core>
 #include <vector>
 
 #include "bullet_bridge/bullet_precision.h"
@@ -51,7 +55,7 @@ class BodyContacts {
               const BulletRopeSettings& settings, const Exclusion& excluded, double h,
               std::vector<RopeContactRecord>& records, RopeStepRecord& step);
   void queue(Rod& rod) const;
-  bool update(const Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step);
+  bool update(Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step);
   void finish(Rod& rod, double h, double concentratedContactRatio, std::vector<RopeContactRecord>& records);
   // Forgets the samples of this substep (the anchors stay) / everything.
   void dropSamples() { samples_.clear(); }
@@ -75,6 +79,10 @@ class BodyContacts {
   };
   void gatherBody(const Rod& rod, const CapsuleProxies& proxies, const btCollisionObject& object,
                   const BulletRopeSettings& settings, const Exclusion& excluded, double h, RopeStepRecord& step);
+  // Solves the sliding samples' friction bounds f = f_n(f) exactly for the current trial (see the
+  // .cpp) and corrects the trial by the change; false if there was nothing to solve or the small
+  // system failed (the trial is then unchanged).
+  bool solveSlidingBounds(Rod& rod, double h);
   void capBodies(double h, double share);
   void markConcentratedLoads(Rod& rod, double ratio) const;
 
@@ -83,6 +91,13 @@ class BodyContacts {
   std::vector<Contact> chordContacts_;
   std::vector<Sample> samples_;
   FrictionAnchors anchors_;
+  // solveSlidingBounds' workspace: the sliding samples, their trial responses (3n each) and the
+  // small dense system.
+  std::vector<int> sliding_;
+  std::vector<double> responses_;
+  std::vector<double> correction_;
+  Eigen::MatrixXd boundSystem_;
+  Eigen::VectorXd boundRhs_;
 };
 
 }  // namespace rope::bullet

@@ -476,6 +476,12 @@ Vec3 Rod::trialVelocity(double s) const {
 void Rod::trialImpulseResponse(double s, int axis, double* response) const {
   validateParameter(s);
   if (axis < 0 || axis > 2) throw InvalidArgument("axis", std::to_string(axis), "must be 0, 1 or 2");
+  trialImpulseResponse(s, Vec3::Unit(axis), response);
+}
+
+void Rod::trialImpulseResponse(double s, const Vec3& direction, double* response) const {
+  validateParameter(s);
+  requireFiniteVector("direction", direction);
   if (!trialValid_ || !solver_.ready()) {
     throw InvalidArgument("trial", "none", "solveTrial() must have succeeded on this rod since the last change");
   }
@@ -486,7 +492,8 @@ void Rod::trialImpulseResponse(double s, int axis, double* response) const {
   evaluateBasis(knots_, k, s, 0, basis);
   const int first = k - d;
   std::fill(response, response + 3 * n, 0.0);
-  for (int a = 0; a <= d; ++a) response[3 * (first + a) + axis] = basis.d[0][static_cast<size_t>(a)];
+  for (int a = 0; a <= d; ++a)
+    for (int c = 0; c < 3; ++c) response[3 * (first + a) + c] = basis.d[0][static_cast<size_t>(a)] * direction[c];
   // The scratch solver is logically const here: it only reuses the trial's Schur factor.
   const_cast<ConstrainedSolver&>(solver_).solveHomogeneous(system_, response, 3 * first);
 }

@@ -190,6 +190,9 @@ class Rod {
   // impulse of 1 N s along axis (0..2) at C(s) would cause, through the same factorised system with
   // the pins still held: the columns of P J^T in coupled_solve.h. O(n) each.
   void trialImpulseResponse(double s, int axis, double* response) const;
+  // The same for an impulse of 1 N s along `direction` (any finite vector, its length included): one
+  // O(n) solve instead of three.
+  void trialImpulseResponse(double s, const Vec3& direction, double* response) const;
   // Adds dv (3n doubles) to the trial velocities (and h dv to its positions): the effect of extra
   // impulses computed with trialImpulseResponse.
   void correctTrial(const double* dv);

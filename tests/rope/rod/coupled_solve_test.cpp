@@ -266,6 +266,33 @@ TEST(RodSplitStep, TrialLeavesTheRodUnchangedAndChangesInvalidateIt) {
   EXPECT_TRUE(test::sameState(before, test::RodSnapshot(rod)));
 }
 
+// The response to an impulse along any direction is the same combination of the three axis
+// responses (the system is linear), from one solve; a bad direction is refused by name.
+TEST(RodSplitStep, ImpulseResponseAlongADirectionCombinesTheAxes) {
+  Rod rod = bentRod(9, Vec3(0, 0, 0), 4);
+  rod.pin(rod.beginParameter());
+  ASSERT_TRUE(rod.solveTrial(1.0 / 240.0).ok);
+  const size_t size = static_cast<size_t>(3 * rod.controlPointCount());
+  const Vec3 direction(0.3, -1.7, 0.8);
+  const double s = 0.37 * rod.endParameter();
+  std::vector<double> along(size), axis(size), combined(size, 0.0);
+  rod.trialImpulseResponse(s, direction, along.data());
+  for (int c = 0; c < 3; ++c) {
+    rod.trialImpulseResponse(s, c, axis.data());
+    for (size_t i = 0; i < size; ++i) combined[i] += direction[c] * axis[i];
+  }
+  double scale = 0.0;
+  for (const double x : combined) scale = std::max(scale, std::abs(x));
+  ASSERT_GT(scale, 0.0);
+  for (size_t i = 0; i < size; ++i) EXPECT_NEAR(along[i], combined[i], 1e-13 * scale) << "entry " << i;
+  try {
+    rod.trialImpulseResponse(s, Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0), along.data());
+    ADD_FAILURE() << "accepted a NaN direction";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.parameter(), "direction[0]");
+  }
+}
+
 TEST(RodSplitStep, MarkedInteractionGetsAKnot) {
   RodSettings settings = settingsFor(8);
   settings.adaptive = true;

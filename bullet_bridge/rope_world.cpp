@@ -92,6 +92,7 @@ void RopeWorld::removeRope(RopeObject& rope) {
   // The last report must not point at a rope that may be destroyed next.
   report_.contacts.clear();
   report_.ropes.clear();
+  report_.ropeContacts.clear();
 }
 
 void RopeWorld::sortCapsulePairs() {

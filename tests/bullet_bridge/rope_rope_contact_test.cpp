@@ -118,6 +118,22 @@ TEST(RopeRopeContactScenario, FreeRopesCollidingConserveLinearMomentum) {
   EXPECT_GT(scene.lower->rod().momentum().norm(), 0.2 * initial.norm());
 }
 
+// A removed rope may be destroyed next: the last report keeps no rope-rope record pointing at it.
+TEST(RopeRopeContactScenario, RemovingARopeClearsTheRecordsThatNameIt) {
+  CrossingRopes scene(0.02, 3.0);
+  bool touched = false;
+  for (int i = 0; i < 120 && !touched; ++i) {
+    step(scene.physics);
+    touched = !scene.physics.ropes().lastReport().ropeContacts.empty();
+  }
+  ASSERT_TRUE(touched);
+  scene.physics.ropes().removeRope(*scene.upper);
+  for (const RopePairContactRecord& record : scene.physics.ropes().lastReport().ropeContacts) {
+    EXPECT_NE(record.ropeA, scene.upper.get());
+    EXPECT_NE(record.ropeB, scene.upper.get());
+  }
+}
+
 TEST(RopeRopeContactScenario, TwinRunsAreBitwiseIdentical) {
   CrossingRopes a(0.02, 3.0), b(0.02, 3.0);
   for (int i = 0; i < 120; ++i) {

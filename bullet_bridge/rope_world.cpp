@@ -96,30 +96,29 @@ void RopeWorld::removeRope(RopeObject& rope) {
 }
 
 void RopeWorld::sortCapsulePairs() {
-  // Counting sort on the first capsule (a global capsule number: ropes' capsules numbered in rope
-  // order), then insertion sort within each bucket, which holds the few capsules one capsule
-  // touches: the full comparison sort of every pair was 8 % of the knot scene's step.
+  // Least-significant-digit radix sort with two stable counting passes over global capsule numbers
+  // (ropes' capsules numbered in rope order): by the second capsule, then by the first. O(pairs +
+  // capsules); the comparison sort of every pair was 8 % of the knot scene's step, and insertion
+  // sort within the first capsule's bucket 11 % (a capsule of a tight knot pairs with dozens).
   ropeOffsets_.assign(1, 0);
   for (const RopeObject* rope : ropes_) ropeOffsets_.push_back(ropeOffsets_.back() + rope->proxies().size());
   const int capsules = ropeOffsets_.back();
-  auto key = [&](const RopeCapsulePair& p) { return ropeOffsets_[static_cast<std::size_t>(p.ropeA)] + p.capsuleA; };
-  pairBuckets_.assign(static_cast<std::size_t>(capsules) + 1, 0);
-  for (const RopeCapsulePair& p : capsulePairs_) ++pairBuckets_[static_cast<std::size_t>(key(p)) + 1];
-  for (int c = 0; c < capsules; ++c) pairBuckets_[static_cast<std::size_t>(c) + 1] += pairBuckets_[static_cast<std::size_t>(c)];
-  sortedPairs_.resize(capsulePairs_.size());
-  bucketFill_.assign(pairBuckets_.begin(), pairBuckets_.end() - 1);
-  for (const RopeCapsulePair& p : capsulePairs_)
-    sortedPairs_[static_cast<std::size_t>(bucketFill_[static_cast<std::size_t>(key(p))]++)] = p;
-  const auto second = [](const RopeCapsulePair& a, const RopeCapsulePair& b) {
-    return std::tie(a.ropeB, a.capsuleB) < std::tie(b.ropeB, b.capsuleB);
+  const auto first = [&](const RopeCapsulePair& p) {
+    return static_cast<std::size_t>(ropeOffsets_[static_cast<std::size_t>(p.ropeA)] + p.capsuleA);
   };
-  for (int c = 0; c < capsules; ++c) {
-    const auto begin = sortedPairs_.begin() + pairBuckets_[static_cast<std::size_t>(c)];
-    const auto end = sortedPairs_.begin() + pairBuckets_[static_cast<std::size_t>(c) + 1];
-    for (auto it = begin + (begin != end ? 1 : 0); it < end; ++it)
-      for (auto back = it; back != begin && second(*back, *(back - 1)); --back) std::iter_swap(back, back - 1);
-  }
-  capsulePairs_.swap(sortedPairs_);
+  const auto second = [&](const RopeCapsulePair& p) {
+    return static_cast<std::size_t>(ropeOffsets_[static_cast<std::size_t>(p.ropeB)] + p.capsuleB);
+  };
+  sortedPairs_.resize(capsulePairs_.size());
+  const auto countingPass = [&](const std::vector<RopeCapsulePair>& from, std::vector<RopeCapsulePair>& to,
+                                const auto& key) {
+    pairBuckets_.assign(static_cast<std::size_t>(capsules) + 1, 0);
+    for (const RopeCapsulePair& p : from) ++pairBuckets_[key(p) + 1];
+    for (int c = 0; c < capsules; ++c) pairBuckets_[static_cast<std::size_t>(c) + 1] += pairBuckets_[static_cast<std::size_t>(c)];
+    for (const RopeCapsulePair& p : from) to[static_cast<std::size_t>(pairBuckets_[key(p)]++)] = p;
+  };
+  countingPass(capsulePairs_, sortedPairs_, second);
+  countingPass(sortedPairs_, capsulePairs_, first);
 }
 
 void RopeWorld::substep(double h) {

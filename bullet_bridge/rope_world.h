@@ -98,7 +98,7 @@ class RopeWorld {
   std::vector<std::vector<const btCollisionObject*>> candidates_;  // per rope, scratch
   std::vector<RopeCapsulePair> capsulePairs_;                       // scratch
   std::vector<RopeCapsulePair> sortedPairs_;                        // scratch of sortCapsulePairs
-  std::vector<int> pairBuckets_, ropeOffsets_, bucketFill_;        // scratch of sortCapsulePairs
+  std::vector<int> pairBuckets_, ropeOffsets_;                     // scratch of sortCapsulePairs
   // Puts capsulePairs_ in (ropeA, capsuleA, ropeB, capsuleB) order in O(pairs + capsules).
   void sortCapsulePairs();
   RopeRopeContacts ropeRopeContacts_;

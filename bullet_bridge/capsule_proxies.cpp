@@ -3,16 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bullet_bridge/bullet_math.h"
+
 namespace rope::bullet {
 
 namespace {
 
 // Bullet's btCollisionWorld::updateSingleAabb disables objects whose box diagonal^2 reaches 1e12.
 constexpr double kBulletAabbLimit2 = 1e12;
-
-btVector3 toBullet(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
-}
 
 }  // namespace
 

@@ -1,17 +1,10 @@
 #include "bullet_bridge/line_contact.h"
 
+#include "bullet_bridge/bullet_math.h"
 #include "bullet_bridge/find_contacts.h"
 #include "rope/spline/gauss_legendre.h"
 
 namespace rope::bullet {
-
-namespace {
-
-btVector3 toBullet(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
-}
-
-}  // namespace
 
 bool LineContactSampler::ballContact(const btVector3& centre, btScalar radius, const btCollisionObject& object,
                                      double reach, Contact& contact) {

@@ -2,16 +2,13 @@
 
 #include <string>
 
+#include "bullet_bridge/bullet_math.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
 
 namespace rope::bullet {
 
 namespace {
-
-btVector3 toBullet(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
-}
 
 // A capsule's transform for btIDebugDraw::drawCapsule (axis along local y, centred).
 btTransform capsuleFrame(const btVector3& a, const btVector3& b) {

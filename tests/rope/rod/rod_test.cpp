@@ -381,5 +381,29 @@ TEST(Rod, TwinRunsAreBitwiseIdentical) {
   }
 }
 
+// A spring sample enters the step exactly like a spring (same trial, bitwise) but is no interaction
+// point: the spring gets a knot at its parameter, the sample does not.
+TEST(Rod, SpringSampleActsLikeASpringWithoutAskingForAKnot) {
+  RodSettings settings = softSettings();
+  settings.initialControlPoints = 6;
+  const Rod start = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  const double s = 0.4321;  // not a knot
+  const Vec3 force(0.2, -3.0, 0.5);
+  const Eigen::Matrix3d stiffness = 400.0 * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d damping = 2.0 * Eigen::Matrix3d::Identity();
+  Rod spring = start, sample = start;
+  spring.addSpring(s, force, stiffness, damping);
+  sample.addSpringSample(s, force, stiffness, damping);
+  ASSERT_TRUE(spring.solveTrial(1.0 / 240).ok);
+  ASSERT_TRUE(sample.solveTrial(1.0 / 240).ok);
+  EXPECT_EQ(spring.trialVelocities(), sample.trialVelocities());
+  EXPECT_NE(sample.trialVelocities(), start.velocities());  // the load acted
+  spring.commitTrial();
+  sample.commitTrial();
+  EXPECT_GT(spring.knots().multiplicity(s), 0);
+  EXPECT_EQ(sample.knots().multiplicity(s), 0);
+  EXPECT_EQ(sample.controlPointCount(), start.controlPointCount());
+}
+
 }  // namespace
 }  // namespace rope

@@ -37,6 +37,10 @@ constexpr double kNormalForceTolerance = 0.05;
 
 }  // namespace
 
+namespace {
+const char* const kFrictionCombiner = "friction combiner";
+}  // namespace
+
 void BodyContacts::reset() {
   samples_.clear();
   anchors_.clear();
@@ -44,8 +48,8 @@ void BodyContacts::reset() {
 
 void BodyContacts::gather(const Rod& rod, const CapsuleProxies& proxies,
                           const std::vector<const btCollisionObject*>& candidates, const BulletRopeSettings& settings,
-                          const Exclusion& excluded, double h, std::vector<RopeContactRecord>& records,
-                          RopeStepRecord& step) {
+                          const Exclusion& excluded, const FrictionOf& friction, double h,
+                          std::vector<RopeContactRecord>& records, RopeStepRecord& step) {
   samples_.clear();
   for (const btCollisionObject* object : candidates) {
     if (!isFinite(object->getWorldTransform())) {
@@ -55,8 +59,9 @@ void BodyContacts::gather(const Rod& rod, const CapsuleProxies& proxies,
     if (object->getBroadphaseHandle() == nullptr) continue;
     const std::size_t first = samples_.size();
     try {
-      gatherBody(rod, proxies, *object, settings, excluded, h, step);
-    } catch (const InvalidArgument&) {
+      gatherBody(rod, proxies, *object, settings, excluded, friction, h, step);
+    } catch (const InvalidArgument& error) {
+      if (error.parameter() == kFrictionCombiner) throw;  // the user's combiner: fails the substep
       samples_.resize(first);
       ++step.skippedBodies;  // a shape the narrowphase does not support
     }
@@ -85,8 +90,8 @@ void BodyContacts::gather(const Rod& rod, const CapsuleProxies& proxies,
 }
 
 void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, const btCollisionObject& object,
-                              const BulletRopeSettings& settings, const Exclusion& excluded, double h,
-                              RopeStepRecord& step) {
+                              const BulletRopeSettings& settings, const Exclusion& excluded,
+                              const FrictionOf& friction, double h, RopeStepRecord& step) {
   const btBroadphaseProxy* handle = object.getBroadphaseHandle();
   const double margin = settings.speculativeMargin;
   const double radius = rod.settings().radius;
@@ -172,13 +177,18 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
       frictionDampingLimit = share * mass / (h * static_cast<double>(samples_.size() - first));
     }
   }
+  // The pair's coefficient (friction_combination.h), once per body touched.
+  const double mu = samples_.size() > first ? friction(object) : 0.0;
+  if (!(std::isfinite(mu) && mu >= 0.0)) {
+    throw InvalidArgument(kFrictionCombiner, formatValue(mu), "must return a finite value >= 0");
+  }
   for (std::size_t i = first; i < samples_.size(); ++i) {
     Sample& sample = samples_[i];
     const double w = sample.geometry.weight;
     sample.law.stiffness = settings.lineContactStiffness * w * stiffnessScale;
     sample.law.damping = settings.lineContactDamping * w * dampingScale;
     sample.law.speculativeDamping = settings.lineSpeculativeDamping * w * speculativeScale;
-    sample.law.friction = settings.friction;
+    sample.law.friction = mu;
     sample.law.frictionVelocity = settings.frictionVelocity;
     sample.law.frictionDampingLimit = frictionDampingLimit;
     // Until a solve says otherwise, sliding friction is bounded by the pressure the sample's stretch

@@ -44,11 +44,13 @@ class BodyContacts {
  public:
   // Whether contacts of the rope piece [s0, s1] with object are ignored (an attachment sits there).
   using Exclusion = std::function<bool(const btCollisionObject& object, double s0, double s1)>;
+  // The combined friction coefficient of the rope with object (friction_combination.h).
+  using FrictionOf = std::function<double(const btCollisionObject& object)>;
 
   // Finds the samples and evaluates their laws; fills records (one per sample, active or not) and
   // step.maxPenetration / contacts / skippedBodies.
   void gather(const Rod& rod, const CapsuleProxies& proxies, const std::vector<const btCollisionObject*>& candidates,
-              const BulletRopeSettings& settings, const Exclusion& excluded, double h,
+              const BulletRopeSettings& settings, const Exclusion& excluded, const FrictionOf& friction, double h,
               std::vector<RopeContactRecord>& records, RopeStepRecord& step);
   void queue(Rod& rod) const;
   bool update(const Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step);
@@ -74,7 +76,8 @@ class BodyContacts {
     int record = -1;
   };
   void gatherBody(const Rod& rod, const CapsuleProxies& proxies, const btCollisionObject& object,
-                  const BulletRopeSettings& settings, const Exclusion& excluded, double h, RopeStepRecord& step);
+                  const BulletRopeSettings& settings, const Exclusion& excluded, const FrictionOf& friction, double h,
+                  RopeStepRecord& step);
   void capBodies(double h, double share);
   void markConcentratedLoads(Rod& rod, double ratio) const;
 

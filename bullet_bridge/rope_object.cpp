@@ -7,6 +7,7 @@
 
 #include "bullet_bridge/body_state.h"
 #include "bullet_bridge/bullet_math.h"
+#include "bullet_bridge/distributed_loads.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
 
@@ -84,6 +85,21 @@ void RopeObject::applyForce(double s, const btVector3& force) { rod_.addForce(s,
 
 void RopeObject::applyImpulse(double s, const btVector3& impulse) { rod_.addImpulse(s, toVec(impulse)); }
 
+void RopeObject::applyDistributedForce(double s0, double s1, const btVector3& forcePerLength) {
+  requireFinite("s0", s0);
+  requireFinite("s1", s1);
+  if (s0 < rod_.beginParameter()) {
+    throw InvalidArgument("s0", formatValue(s0), "must be >= the rope's beginParameter " + formatValue(rod_.beginParameter()));
+  }
+  if (s1 > rod_.endParameter()) {
+    throw InvalidArgument("s1", formatValue(s1), "must be <= the rope's endParameter " + formatValue(rod_.endParameter()));
+  }
+  if (!(s1 > s0)) throw InvalidArgument("s1", formatValue(s1), "must be > s0 = " + formatValue(s0));
+  static const char* const kNames[3] = {"forcePerLength[0]", "forcePerLength[1]", "forcePerLength[2]"};
+  for (int i = 0; i < 3; ++i) requireFinite(kNames[i], static_cast<double>(forcePerLength[i]));
+  queueDistributedForce(rod_, s0, s1, toVec(forcePerLength));
+}
+
 void RopeObject::enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld) {
   proxies_->addToWorld(collisionWorld, settings_.collisionGroup, settings_.collisionMask);
   world_ = &world;
@@ -151,6 +167,11 @@ void RopeObject::removeAttachment(int id) {
   const Attachment& attachment = attachments_[static_cast<std::size_t>(index)];
   if (attachment.body == nullptr) rod_.releasePin(attachment.pinId);
   attachments_.erase(attachments_.begin() + index);
+}
+
+double RopeObject::bodyFriction(const btCollisionObject& body) const {
+  if (world_ != nullptr && world_->bodyFrictionCombiner_) return world_->bodyFrictionCombiner_(*this, body);
+  return combinedFriction(settings_.friction, static_cast<double>(body.getFriction()));
 }
 
 bool RopeObject::attachedNear(const btCollisionObject& object, double s0, double s1) const {
@@ -224,6 +245,15 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
 
 void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
   requirePositive("h", h);
+  if (settings_.fluidDensity > 0.0) {
+    // Drag at the state the substep starts from (distributed_loads.h), queued with the user's loads.
+    const double diameter = 2.0 * rod_.settings().radius;
+    DragLaw drag;
+    drag.normal = 0.5 * settings_.fluidDensity * diameter * settings_.normalDragCoefficient;
+    drag.tangential = 0.5 * settings_.fluidDensity * 3.14159265358979323846 * diameter * settings_.tangentialDragCoefficient;
+    drag.wind = toVec(settings_.windVelocity);
+    queueDrag(rod_, drag);
+  }
   rod_.takeLoads(userLoads_);  // queued on rod() or by applyForce since the last substep
   contacts_.clear();
   pending_.clear();
@@ -234,8 +264,8 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
   proxies_->rebuild(rod_);
   bodyContacts_.gather(
       rod_, *proxies_, candidates, settings_,
-      [this](const btCollisionObject& object, double s0, double s1) { return attachedNear(object, s0, s1); }, h,
-      contacts_, lastStep_);
+      [this](const btCollisionObject& object, double s0, double s1) { return attachedNear(object, s0, s1); },
+      [this](const btCollisionObject& object) { return bodyFriction(object); }, h, contacts_, lastStep_);
   for (RopeContactRecord& record : contacts_) record.rope = this;
 
   queueAttachments(h);

@@ -27,6 +27,7 @@
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/contact.h"
 #include "bullet_bridge/contact_report.h"
+#include "bullet_bridge/friction_combination.h"
 #include "bullet_bridge/rope_settings.h"
 #include "bullet_bridge/rope_warnings.h"
 #include "rope/rod/rod.h"
@@ -75,6 +76,12 @@ class RopeObject {
   // "force[i]" / "impulse[i]" and queues nothing.
   void applyForce(double s, const btVector3& force);
   void applyImpulse(double s, const btVector3& impulse);
+  // A force per metre of rope (N/m of rest length, world frame) over [s0, s1], acting in the next
+  // substep only like applyForce: integrated along the rope by Gauss-Legendre into the consistent
+  // generalised forces (distributed_loads.h), so a uniform q over the whole rope moves its centre of
+  // mass exactly like a force q * restLength. Throws InvalidArgument naming "s0" / "s1" (NaN, outside
+  // the rope, s1 <= s0) or "forcePerLength[i]" (not finite) and queues nothing.
+  void applyDistributedForce(double s0, double s1, const btVector3& forcePerLength);
 
   // ---- cutting ([A] §5.1) ----
   // Cuts the rope at s (Rod::cutPoint: on a knot within minKnotSpacing of s; no piece shorter than
@@ -147,6 +154,8 @@ class RopeObject {
   // Whether the rope is attached to object within 4 radii of the capsule [s0, s1]: the rope's end sits
   // in the body's surface there, so those contacts are ignored.
   bool attachedNear(const btCollisionObject& object, double s0, double s1) const;
+  // The friction coefficient of this rope against body (friction_combination.h).
+  double bodyFriction(const btCollisionObject& body) const;
   // An attachment's spring, queued on the rod with every solve of the substep.
   struct PendingSpring {
     double s;

@@ -1,6 +1,8 @@
 #include "bullet_bridge/rope_object.h"
 
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -10,6 +12,7 @@
 #include "bullet_bridge/distributed_loads.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
+#include "rope/spline/bspline_curve.h"
 
 namespace rope::bullet {
 
@@ -100,6 +103,17 @@ void RopeObject::applyDistributedForce(double s0, double s1, const btVector3& fo
   queueDistributedForce(rod_, s0, s1, toVec(forcePerLength));
 }
 
+double RopeObject::tension(double s) const {
+  requireParameter(rod_, s);
+  const double stretch = 1.0 + rod_.strain(s);  // |C'| / l0'
+  // T = dW/dg of W = (EA/8) (g^2 - 1)^2 per metre of rest length (stretching_energy.h).
+  return 0.5 * rod_.settings().axialStiffness() * (stretch * stretch - 1.0) * stretch;
+}
+
+double RopeObject::attachmentTension(int id) const {
+  return tension(attachments_[static_cast<std::size_t>(findAttachment(id))].s);
+}
+
 void RopeObject::enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld) {
   proxies_->addToWorld(collisionWorld, settings_.collisionGroup, settings_.collisionMask);
   world_ = &world;
@@ -139,6 +153,19 @@ int RopeObject::attachToBody(double s, btRigidBody& body, const btVector3& local
   attachment.settings = settings;
   attachments_.push_back(attachment);
   return attachment.id;
+}
+
+int RopeObject::clampToBody(double s, btRigidBody& body, const btVector3& localPoint,
+                            const btVector3& localDirection, const AttachmentSettings& settings) {
+  requireFinitePoint("localDirection", localDirection);
+  if (!(localDirection.length2() > btScalar(0))) {
+    throw InvalidArgument("localDirection", "(0, 0, 0)", "must have a length > 0");
+  }
+  const int id = attachToBody(s, body, localPoint, settings);  // every other check; nothing added if it throws
+  Attachment& attachment = attachments_.back();
+  attachment.clamp = true;
+  attachment.localDirection = localDirection.normalized();
+  return id;
 }
 
 int RopeObject::attachToPoint(double s, const btVector3& point) {
@@ -191,6 +218,7 @@ void RopeObject::queueAttachments(double h) {
   for (std::size_t i = 0; i < attachments_.size(); ++i) {
     Attachment& attachment = attachments_[i];
     attachment.lastForce.setZero();
+    attachment.lastMoment.setZero();
     btRigidBody* body = attachment.body;
     if (body == nullptr || body->getBroadphaseHandle() == nullptr) continue;  // pins act in the rod
     if (!bodyStateFinite(*body)) {  // a NaN transform, velocity or mass must not poison the rope
@@ -218,8 +246,34 @@ void RopeObject::queueAttachments(double h) {
     pending.body = dynamicBody(*body);
     pending.point = point;
     pending.attachment = static_cast<int>(i);
+    pending.tangent = false;
     pending_.push_back(pending);
+    if (attachment.clamp) queueClampTangent(attachment, *body, static_cast<int>(i), h);
   }
+}
+
+void RopeObject::queueClampTangent(const Attachment& attachment, btRigidBody& body, int index, double h) {
+  double stiffness = attachment.settings.angularStiffness;
+  double damping = attachment.settings.angularDamping;
+  if (dynamicBody(body) != nullptr) {
+    // Smallest principal moment of inertia: the explicit angular impulse's stability bound.
+    const btVector3 inertia = body.getInvInertiaDiagLocal();
+    capForBody(static_cast<double>(std::max({inertia.x(), inertia.y(), inertia.z()})), h,
+               settings_.bodyStabilityFactor, stiffness, damping);
+  }
+  const Vec3 direction = toVec(body.getCenterOfMassTransform().getBasis() * attachment.localDirection).normalized();
+  const CurvePoint rate = evaluateCurve(rod_.knots(), rod_.velocities(), attachment.s);
+  PendingSpring pending;
+  pending.s = attachment.s;
+  pending.derivative = evaluateCurve(rod_.knots(), rod_.controlPoints(), attachment.s).firstDerivative;
+  pending.velocity = rate.firstDerivative;
+  pending.tangent = true;
+  pending.spring = clampTangentSpring(stiffness, damping, rod_.restMetric(attachment.s), pending.derivative,
+                                      pending.velocity, direction, toVec(body.getAngularVelocity()), h);
+  pending.body = dynamicBody(body);
+  pending.point = body.getCenterOfMassPosition();
+  pending.attachment = index;
+  pending_.push_back(pending);
 }
 
 StepReport RopeObject::solveTrialWithContacts(double h) {
@@ -233,8 +287,13 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
     lastStep_.solvePasses = pass;
     rod_.clearLoads();
     rod_.addLoads(userLoads_);
-    for (const PendingSpring& pending : pending_)
-      rod_.addSpring(pending.s, pending.spring.force, pending.spring.stiffness, pending.spring.damping);
+    for (const PendingSpring& pending : pending_) {
+      if (pending.tangent) {
+        rod_.addTangentSpring(pending.s, pending.spring.force, pending.spring.stiffness, pending.spring.damping);
+      } else {
+        rod_.addSpring(pending.s, pending.spring.force, pending.spring.stiffness, pending.spring.damping);
+      }
+    }
     bodyContacts_.queue(rod_);
     report = rod_.solveTrial(h);
     if (!report.ok || lastStep_.contacts == 0 || pass >= kMaxSolvePasses) break;
@@ -287,6 +346,17 @@ void RopeObject::endSubstep(double h) {
     // Forces from the final trial (rope-rope contact may have corrected it): exactly what the rope's
     // implicit system integrated for each spring.
     for (const PendingSpring& pending : pending_) {
+      if (pending.tangent) {
+        // The generalised force on C'(s) is a pure moment C' x f on the rope; the body gets its opposite.
+        const Vec3 rateNew = evaluateCurve(rod_.knots(), rod_.trialVelocities(), pending.s).firstDerivative;
+        const Vec3 moment = pending.derivative.cross(endOfStepForce(pending.spring, pending.velocity, rateNew, h));
+        attachments_[static_cast<std::size_t>(pending.attachment)].lastMoment += toBullet(moment);
+        if (pending.body != nullptr) {
+          pending.body->applyTorqueImpulse(toBullet(-moment * h));
+          pending.body->activate();
+        }
+        continue;
+      }
       const Vec3 force = endOfStepForce(pending.spring, pending.velocity, rod_.trialVelocity(pending.s), h);
       attachments_[static_cast<std::size_t>(pending.attachment)].lastForce += toBullet(force);
       if (pending.body != nullptr) {
@@ -315,6 +385,17 @@ void RopeObject::endSubstep(double h) {
   }
   lastStep_.controlPoints = rod_.controlPointCount();
   pending_.clear();
+  attachmentLoads_.clear();
+  for (const Attachment& attachment : attachments_) {
+    RopeAttachmentRecord record;
+    record.rope = this;
+    record.id = attachment.id;
+    record.s = attachment.s;
+    record.body = attachment.body;
+    record.force = attachment.lastForce;
+    record.tension = tension(attachment.s);
+    attachmentLoads_.push_back(record);
+  }
   const Clock::time_point proxyStart = Clock::now();
   lastStep_.proxyOverflows = proxies_->updateBoxes(rod_, h, settings_.speculativeMargin);
   const Clock::time_point end = Clock::now();

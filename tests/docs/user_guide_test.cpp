@@ -133,7 +133,9 @@ TEST(UserGuide, AttachmentSettings) {
   using S = AttachmentSettings;
   checkSettingsTable(StructSpec<S>{"rope::bullet::AttachmentSettings",
                                    "attachment.",
-                                   {field("stiffness", &S::stiffness), field("damping", &S::damping)},
+                                   {field("stiffness", &S::stiffness), field("damping", &S::damping),
+                                    field("angularStiffness", &S::angularStiffness),
+                                    field("angularDamping", &S::angularDamping)},
                                    [](const S& settings) { settings.validate(); }});
 }
 

@@ -425,6 +425,20 @@ std::vector<Case> allCases() {
        [](Fixture& f) { f.rope.attachToBody(0.5, *f.foreignBody, btVector3(0, 0, 0)); }},
       {"rope attachToBody same body twice at one point", "s", "1",
        [](Fixture& f) { f.rope.attachToBody(1.0, *f.box, btVector3(0, 0, 0)); }},
+      {"rope clampToBody direction zero", "localDirection", "",
+       [](Fixture& f) { f.rope.clampToBody(0.5, *f.box, btVector3(0, 0, 0), btVector3(0, 0, 0)); }},
+      {"rope clampToBody direction NaN", "localDirection.x", "nan",
+       [](Fixture& f) { f.rope.clampToBody(0.5, *f.box, btVector3(0, 0, 0), btVector3(btScalar(kNaN), 0, 1)); }},
+      {"rope clampToBody foreign body", "body", "",
+       [](Fixture& f) { f.rope.clampToBody(0.5, *f.foreignBody, btVector3(0, 0, 0), btVector3(1, 0, 0)); }},
+      {"rope clampToBody angularStiffness 0", "attachment.angularStiffness", "0",
+       [](Fixture& f) {
+         AttachmentSettings settings;
+         settings.angularStiffness = 0.0;
+         f.rope.clampToBody(0.5, *f.box, btVector3(0, 0, 0), btVector3(1, 0, 0), settings);
+       }},
+      {"rope tension s outside", "s", "2", [](Fixture& f) { f.rope.tension(2.0); }},
+      {"rope attachmentTension unknown id", "id", "77", [](Fixture& f) { f.rope.attachmentTension(77); }},
       {"rope attachToPoint point inf", "point.z", "inf",
        [](Fixture& f) { f.rope.attachToPoint(0.5, btVector3(0, 0, btScalar(kInf))); }},
       {"rope attachToPoint where a pin is", "s", "0", [](Fixture& f) { f.rope.attachToPoint(0.0, btVector3(0, 1, 0)); }},

@@ -48,13 +48,17 @@ class BodyContacts {
  public:
   // Whether contacts of the rope piece [s0, s1] with object are ignored (an attachment sits there).
   using Exclusion = std::function<bool(const btCollisionObject& object, double s0, double s1)>;
+  // The combined friction coefficient of the rope with object (friction_combination.h).
+  using FrictionOf = std::function<double(const btCollisionObject& object)>;
 
   // Finds the samples and evaluates their laws; fills records (one per sample, active or not) and
   // step.maxPenetration / contacts / skippedBodies.
   void gather(const Rod& rod, const CapsuleProxies& proxies, const std::vector<const btCollisionObject*>& candidates,
-              const BulletRopeSettings& settings, const Exclusion& excluded, double h,
+              const BulletRopeSettings& settings, const Exclusion& excluded, const FrictionOf& friction, double h,
               std::vector<RopeContactRecord>& records, RopeStepRecord& step);
   void queue(Rod& rod) const;
+  // Whether update() may solve strongly coupled sliding bounds exactly (solveSlidingBounds); default on.
+  void setExactBounds(bool exact) { exactBounds_ = exact; }
   bool update(Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step);
   void finish(Rod& rod, double h, double concentratedContactRatio, std::vector<RopeContactRecord>& records);
   // Forgets the samples of this substep (the anchors stay) / everything.
@@ -78,7 +82,8 @@ class BodyContacts {
     int record = -1;
   };
   void gatherBody(const Rod& rod, const CapsuleProxies& proxies, const btCollisionObject& object,
-                  const BulletRopeSettings& settings, const Exclusion& excluded, double h, RopeStepRecord& step);
+                  const BulletRopeSettings& settings, const Exclusion& excluded, const FrictionOf& friction, double h,
+                  RopeStepRecord& step);
   // Solves the sliding samples' friction bounds f = f_n(f) exactly for the current trial (see the
   // .cpp) and corrects the trial by the change; false if there was nothing to solve or the small
   // system failed (the trial is then unchanged).
@@ -93,6 +98,7 @@ class BodyContacts {
   FrictionAnchors anchors_;
   // solveSlidingBounds' workspace: the sliding samples, their trial responses (3n each) and the
   // small dense system.
+  bool exactBounds_ = true;
   std::vector<int> sliding_;
   std::vector<double> responses_;
   std::vector<double> correction_;

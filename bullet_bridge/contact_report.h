@@ -43,6 +43,16 @@ struct RopePairContactRecord {
   bool active = false;                // false: a speculative contact that did not act, or was released
 };
 
+// The load at one attachment of a rope after a substep (RopeObject::attachments()).
+struct RopeAttachmentRecord {
+  const RopeObject* rope = nullptr;
+  int id = 0;                             // the attachment's id
+  double s = 0.0;                         // where on the rope
+  const btCollisionObject* body = nullptr;  // nullptr: a point attachment (pin)
+  btVector3 force{0, 0, 0};               // body attachments: force on the rope over the substep, N
+  double tension = 0.0;                   // axial force in the rope at s, N (RopeObject::tension)
+};
+
 struct RopeStepRecord {
   const RopeObject* rope = nullptr;
   bool ok = true;                // false: the rod step failed and the rope kept its state
@@ -73,6 +83,7 @@ struct ContactReport {
   std::vector<RopeContactRecord> contacts;
   std::vector<RopeStepRecord> ropes;
   std::vector<RopePairContactRecord> ropeContacts;  // rope-rope and self-contacts
+  std::vector<RopeAttachmentRecord> attachments;    // every attachment of every rope, after the substep
   double ropeContactSeconds = 0.0;  // rope-rope narrowphase and coupled solve, s (profiling)
   const char* ropeContactFailure = "";  // non-empty: the rope-rope solve failed this substep (static text)
   double pairScanSeconds = 0.0;  // reading Bullet's pair cache for rope candidates, s (profiling)

@@ -1,14 +1,18 @@
 #include "bullet_bridge/rope_object.h"
 
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "bullet_bridge/body_state.h"
 #include "bullet_bridge/bullet_math.h"
+#include "bullet_bridge/distributed_loads.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
+#include "rope/spline/bspline_curve.h"
 
 namespace rope::bullet {
 
@@ -84,6 +88,32 @@ void RopeObject::applyForce(double s, const btVector3& force) { rod_.addForce(s,
 
 void RopeObject::applyImpulse(double s, const btVector3& impulse) { rod_.addImpulse(s, toVec(impulse)); }
 
+void RopeObject::applyDistributedForce(double s0, double s1, const btVector3& forcePerLength) {
+  requireFinite("s0", s0);
+  requireFinite("s1", s1);
+  if (s0 < rod_.beginParameter()) {
+    throw InvalidArgument("s0", formatValue(s0), "must be >= the rope's beginParameter " + formatValue(rod_.beginParameter()));
+  }
+  if (s1 > rod_.endParameter()) {
+    throw InvalidArgument("s1", formatValue(s1), "must be <= the rope's endParameter " + formatValue(rod_.endParameter()));
+  }
+  if (!(s1 > s0)) throw InvalidArgument("s1", formatValue(s1), "must be > s0 = " + formatValue(s0));
+  static const char* const kNames[3] = {"forcePerLength[0]", "forcePerLength[1]", "forcePerLength[2]"};
+  for (int i = 0; i < 3; ++i) requireFinite(kNames[i], static_cast<double>(forcePerLength[i]));
+  queueDistributedForce(rod_, s0, s1, toVec(forcePerLength));
+}
+
+double RopeObject::tension(double s) const {
+  requireParameter(rod_, s);
+  const double stretch = 1.0 + rod_.strain(s);  // |C'| / l0'
+  // T = dW/dg of W = (EA/8) (g^2 - 1)^2 per metre of rest length (stretching_energy.h).
+  return 0.5 * rod_.settings().axialStiffness() * (stretch * stretch - 1.0) * stretch;
+}
+
+double RopeObject::attachmentTension(int id) const {
+  return tension(attachments_[static_cast<std::size_t>(findAttachment(id))].s);
+}
+
 void RopeObject::enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld) {
   proxies_->addToWorld(collisionWorld, settings_.collisionGroup, settings_.collisionMask);
   world_ = &world;
@@ -125,6 +155,19 @@ int RopeObject::attachToBody(double s, btRigidBody& body, const btVector3& local
   return attachment.id;
 }
 
+int RopeObject::clampToBody(double s, btRigidBody& body, const btVector3& localPoint,
+                            const btVector3& localDirection, const AttachmentSettings& settings) {
+  requireFinitePoint("localDirection", localDirection);
+  if (!(localDirection.length2() > btScalar(0))) {
+    throw InvalidArgument("localDirection", "(0, 0, 0)", "must have a length > 0");
+  }
+  const int id = attachToBody(s, body, localPoint, settings);  // every other check; nothing added if it throws
+  Attachment& attachment = attachments_.back();
+  attachment.clamp = true;
+  attachment.localDirection = localDirection.normalized();
+  return id;
+}
+
 int RopeObject::attachToPoint(double s, const btVector3& point) {
   requireParameter(rod_, s);
   requireFinitePoint("point", point);
@@ -153,6 +196,11 @@ void RopeObject::removeAttachment(int id) {
   attachments_.erase(attachments_.begin() + index);
 }
 
+double RopeObject::bodyFriction(const btCollisionObject& body) const {
+  if (world_ != nullptr && world_->bodyFrictionCombiner_) return world_->bodyFrictionCombiner_(*this, body);
+  return combinedFriction(settings_.friction, static_cast<double>(body.getFriction()));
+}
+
 bool RopeObject::attachedNear(const btCollisionObject& object, double s0, double s1) const {
   const double reach = 4.0 * rod_.settings().radius;
   for (const Attachment& attachment : attachments_) {
@@ -170,6 +218,7 @@ void RopeObject::queueAttachments(double h) {
   for (std::size_t i = 0; i < attachments_.size(); ++i) {
     Attachment& attachment = attachments_[i];
     attachment.lastForce.setZero();
+    attachment.lastMoment.setZero();
     btRigidBody* body = attachment.body;
     if (body == nullptr || body->getBroadphaseHandle() == nullptr) continue;  // pins act in the rod
     if (!bodyStateFinite(*body)) {  // a NaN transform, velocity or mass must not poison the rope
@@ -197,8 +246,34 @@ void RopeObject::queueAttachments(double h) {
     pending.body = dynamicBody(*body);
     pending.point = point;
     pending.attachment = static_cast<int>(i);
+    pending.tangent = false;
     pending_.push_back(pending);
+    if (attachment.clamp) queueClampTangent(attachment, *body, static_cast<int>(i), h);
   }
+}
+
+void RopeObject::queueClampTangent(const Attachment& attachment, btRigidBody& body, int index, double h) {
+  double stiffness = attachment.settings.angularStiffness;
+  double damping = attachment.settings.angularDamping;
+  if (dynamicBody(body) != nullptr) {
+    // Smallest principal moment of inertia: the explicit angular impulse's stability bound.
+    const btVector3 inertia = body.getInvInertiaDiagLocal();
+    capForBody(static_cast<double>(std::max({inertia.x(), inertia.y(), inertia.z()})), h,
+               settings_.bodyStabilityFactor, stiffness, damping);
+  }
+  const Vec3 direction = toVec(body.getCenterOfMassTransform().getBasis() * attachment.localDirection).normalized();
+  const CurvePoint rate = evaluateCurve(rod_.knots(), rod_.velocities(), attachment.s);
+  PendingSpring pending;
+  pending.s = attachment.s;
+  pending.derivative = evaluateCurve(rod_.knots(), rod_.controlPoints(), attachment.s).firstDerivative;
+  pending.velocity = rate.firstDerivative;
+  pending.tangent = true;
+  pending.spring = clampTangentSpring(stiffness, damping, rod_.restMetric(attachment.s), pending.derivative,
+                                      pending.velocity, direction, toVec(body.getAngularVelocity()), h);
+  pending.body = dynamicBody(body);
+  pending.point = body.getCenterOfMassPosition();
+  pending.attachment = index;
+  pending_.push_back(pending);
 }
 
 StepReport RopeObject::solveTrialWithContacts(double h) {
@@ -212,8 +287,13 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
     lastStep_.solvePasses = pass;
     rod_.clearLoads();
     rod_.addLoads(userLoads_);
-    for (const PendingSpring& pending : pending_)
-      rod_.addSpring(pending.s, pending.spring.force, pending.spring.stiffness, pending.spring.damping);
+    for (const PendingSpring& pending : pending_) {
+      if (pending.tangent) {
+        rod_.addTangentSpring(pending.s, pending.spring.force, pending.spring.stiffness, pending.spring.damping);
+      } else {
+        rod_.addSpring(pending.s, pending.spring.force, pending.spring.stiffness, pending.spring.damping);
+      }
+    }
     bodyContacts_.queue(rod_);
     report = rod_.solveTrial(h);
     if (!report.ok || lastStep_.contacts == 0 || pass >= kMaxSolvePasses) break;
@@ -224,7 +304,19 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
 
 void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
   requirePositive("h", h);
+  if (settings_.fluidDensity > 0.0) {
+    // Drag at the state the substep starts from (distributed_loads.h), queued with the user's loads.
+    const double diameter = 2.0 * rod_.settings().radius;
+    DragLaw drag;
+    drag.normal = 0.5 * settings_.fluidDensity * diameter * settings_.normalDragCoefficient;
+    drag.tangential = 0.5 * settings_.fluidDensity * 3.14159265358979323846 * diameter * settings_.tangentialDragCoefficient;
+    drag.wind = toVec(settings_.windVelocity);
+    queueDrag(rod_, drag);
+  }
   rod_.takeLoads(userLoads_);  // queued on rod() or by applyForce since the last substep
+  // Rope-rope contact corrects the trial after the body contacts' passes, which would spoil friction
+  // bounds made exact before it: a rope that touched ropes last substep keeps the pass-by-pass ones.
+  bodyContacts_.setExactBounds(lastStep_.ropeContacts == 0);
   contacts_.clear();
   pending_.clear();
   lastStep_ = RopeStepRecord();
@@ -234,8 +326,8 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
   proxies_->rebuild(rod_);
   bodyContacts_.gather(
       rod_, *proxies_, candidates, settings_,
-      [this](const btCollisionObject& object, double s0, double s1) { return attachedNear(object, s0, s1); }, h,
-      contacts_, lastStep_);
+      [this](const btCollisionObject& object, double s0, double s1) { return attachedNear(object, s0, s1); },
+      [this](const btCollisionObject& object) { return bodyFriction(object); }, h, contacts_, lastStep_);
   for (RopeContactRecord& record : contacts_) record.rope = this;
 
   queueAttachments(h);
@@ -257,6 +349,17 @@ void RopeObject::endSubstep(double h) {
     // Forces from the final trial (rope-rope contact may have corrected it): exactly what the rope's
     // implicit system integrated for each spring.
     for (const PendingSpring& pending : pending_) {
+      if (pending.tangent) {
+        // The generalised force on C'(s) is a pure moment C' x f on the rope; the body gets its opposite.
+        const Vec3 rateNew = evaluateCurve(rod_.knots(), rod_.trialVelocities(), pending.s).firstDerivative;
+        const Vec3 moment = pending.derivative.cross(endOfStepForce(pending.spring, pending.velocity, rateNew, h));
+        attachments_[static_cast<std::size_t>(pending.attachment)].lastMoment += toBullet(moment);
+        if (pending.body != nullptr) {
+          pending.body->applyTorqueImpulse(toBullet(-moment * h));
+          pending.body->activate();
+        }
+        continue;
+      }
       const Vec3 force = endOfStepForce(pending.spring, pending.velocity, rod_.trialVelocity(pending.s), h);
       attachments_[static_cast<std::size_t>(pending.attachment)].lastForce += toBullet(force);
       if (pending.body != nullptr) {
@@ -285,6 +388,17 @@ void RopeObject::endSubstep(double h) {
   }
   lastStep_.controlPoints = rod_.controlPointCount();
   pending_.clear();
+  attachmentLoads_.clear();
+  for (const Attachment& attachment : attachments_) {
+    RopeAttachmentRecord record;
+    record.rope = this;
+    record.id = attachment.id;
+    record.s = attachment.s;
+    record.body = attachment.body;
+    record.force = attachment.lastForce;
+    record.tension = tension(attachment.s);
+    attachmentLoads_.push_back(record);
+  }
   const Clock::time_point proxyStart = Clock::now();
   lastStep_.proxyOverflows = proxies_->updateBoxes(rod_, h, settings_.speculativeMargin);
   const Clock::time_point end = Clock::now();

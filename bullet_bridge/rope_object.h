@@ -27,6 +27,7 @@
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/contact.h"
 #include "bullet_bridge/contact_report.h"
+#include "bullet_bridge/friction_combination.h"
 #include "bullet_bridge/rope_settings.h"
 #include "bullet_bridge/rope_warnings.h"
 #include "rope/rod/rod.h"
@@ -57,6 +58,13 @@ class RopeObject {
   // same body already attached within RodSettings::minKnotSpacing (rest length) of s ("s": a second
   // spring at one point only stiffens the first beyond its stability cap; change its settings).
   int attachToBody(double s, btRigidBody& body, const btVector3& localPoint, const AttachmentSettings& settings = {});
+  // A clamp (weld) to a body: C(s) held at the body's point localPoint like attachToBody, and the
+  // rope's tangent at s held along localDirection (body frame, any length > 0), two-way: the body
+  // receives the force and the moment (attachment.h). Removable with removeAttachment. Throws like
+  // attachToBody, and for a non-finite ("localDirection.x", ...) or zero ("localDirection")
+  // direction or bad angular settings ("attachment.angularStiffness", ...).
+  int clampToBody(double s, btRigidBody& body, const btVector3& localPoint, const btVector3& localDirection,
+                  const AttachmentSettings& settings = {});
   // C(s) held at a world point (a rod pin); move it with setAttachmentTarget. Throws for a bad s
   // ("s"), a non-finite point ("point") or a pin already at s.
   int attachToPoint(double s, const btVector3& point);
@@ -75,6 +83,23 @@ class RopeObject {
   // "force[i]" / "impulse[i]" and queues nothing.
   void applyForce(double s, const btVector3& force);
   void applyImpulse(double s, const btVector3& impulse);
+  // A force per metre of rope (N/m of rest length, world frame) over [s0, s1], acting in the next
+  // substep only like applyForce: integrated along the rope by Gauss-Legendre into the consistent
+  // generalised forces (distributed_loads.h), so a uniform q over the whole rope moves its centre of
+  // mass exactly like a force q * restLength. Throws InvalidArgument naming "s0" / "s1" (NaN, outside
+  // the rope, s1 <= s0) or "forcePerLength[i]" (not finite) and queues nothing.
+  void applyDistributedForce(double s0, double s1, const btVector3& forcePerLength);
+
+  // ---- tension ----
+  // The axial force in the rope at s, N (> 0 pulling, < 0 compressed): the material's elastic
+  // force along the curve from the stretching law (docs/method.md §6), T = (EA/2) (g^2 - 1) g with
+  // g = |C'(s)| / l0'(s) the stretch, at the rope's current state. Throws InvalidArgument("s", ...)
+  // for s outside the rope or NaN.
+  double tension(double s) const;
+  // The tension at an attachment (at its s). Throws InvalidArgument("id", ...) for an unknown id.
+  double attachmentTension(int id) const;
+  // Every attachment's load after the last substep (also in RopeWorld::lastReport().attachments).
+  const std::vector<RopeAttachmentRecord>& attachmentLoads() const { return attachmentLoads_; }
 
   // ---- cutting ([A] §5.1) ----
   // Cuts the rope at s (Rod::cutPoint: on a knot within minKnotSpacing of s; no piece shorter than
@@ -142,15 +167,21 @@ class RopeObject {
   void requireNewBodyPoint(double s, const btRigidBody& body) const;  // rope_object_failures.cpp
   // The springs of the body attachments for this substep (pending_), capped on light bodies.
   void queueAttachments(double h);
+  // A clamp's rotational spring (attachment.h), capped on a light body.
+  void queueClampTangent(const Attachment& attachment, btRigidBody& body, int index, double h);
   // The rod's trial step with the attachments and the body contacts' active set (body_contacts.h).
   StepReport solveTrialWithContacts(double h);
   // Whether the rope is attached to object within 4 radii of the capsule [s0, s1]: the rope's end sits
   // in the body's surface there, so those contacts are ignored.
   bool attachedNear(const btCollisionObject& object, double s0, double s1) const;
+  // The friction coefficient of this rope against body (friction_combination.h).
+  double bodyFriction(const btCollisionObject& body) const;
   // An attachment's spring, queued on the rod with every solve of the substep.
   struct PendingSpring {
     double s;
-    Vec3 velocity;      // rope velocity at s before the step
+    Vec3 velocity;      // rope velocity at s before the step (tangent springs: Cdot'(s))
+    Vec3 derivative;    // tangent springs: C'(s) before the step
+    bool tangent;       // a clamp's rotational spring (Rod::addTangentSpring)
     ContactSpring spring;
     btRigidBody* body;  // receives the opposite impulse (nullptr: static or kinematic)
     btVector3 point;    // where, world frame
@@ -166,6 +197,7 @@ class RopeObject {
   std::vector<Attachment> attachments_;
   int nextAttachmentId_ = 1;
   std::vector<RopeContactRecord> contacts_;
+  std::vector<RopeAttachmentRecord> attachmentLoads_;
   RopeStepRecord lastStep_;
   std::vector<PendingSpring> pending_;
   Rod::LoadQueue userLoads_;  // what the user queued on the rod for this substep

@@ -9,6 +9,7 @@
 #include "bullet_bridge/contact_response.h"
 #include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/segment_segment_distance.h"
+#include "rope/common/error.h"
 
 namespace rope::bullet {
 
@@ -50,13 +51,13 @@ double parameterAt(const CapsuleProxy& proxy, double t) {
 }
 
 // The softer of two ropes' laws (each field the smaller value): a stiff rope against a soft one is
-// limited by the soft one, and friction by the more slippery surface.
+// limited by the soft one. Friction is combined as Bullet combines it (friction_combination.h).
 ContactLaw pairLaw(const BulletRopeSettings& a, const BulletRopeSettings& b) {
   ContactLaw law;
   law.stiffness = std::min(a.contactStiffness, b.contactStiffness);
   law.damping = std::min(a.contactDamping, b.contactDamping);
   law.speculativeDamping = std::min(a.speculativeDamping, b.speculativeDamping);
-  law.friction = std::min(a.friction, b.friction);
+  law.friction = combinedFriction(a.friction, b.friction);
   law.frictionVelocity = std::max(a.frictionVelocity, b.frictionVelocity);
   return law;
 }
@@ -160,6 +161,13 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     candidate.arcB = arcSB;
     candidate.spacing = radii;
     candidate.law = pairLaw(ropeA.settings(), ropeB.settings());
+    if (combiner_) {
+      candidate.law.friction = combiner_(ropeA, ropeB);
+      if (!(std::isfinite(candidate.law.friction) && candidate.law.friction >= 0.0)) {
+        throw InvalidArgument("rope friction combiner", formatValue(candidate.law.friction),
+                              "must return a finite value >= 0");
+      }
+    }
     candidate.distance = centres - radii;
     candidate.normal = normal;
     candidate.relativeVelocity = rodA.velocity(sA) - rodB.velocity(sB);

@@ -24,6 +24,7 @@
 
 #include "bullet_bridge/contact_report.h"
 #include "bullet_bridge/contact_response.h"
+#include "bullet_bridge/friction_combination.h"
 #include "rope/rod/coupled_solve.h"
 
 namespace rope::bullet {
@@ -48,6 +49,8 @@ class RopeRopeContacts {
   // contact is reported inactive).
   int solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs, double h,
             std::vector<RopePairContactRecord>& records);
+  // Replaces the product of the two ropes' coefficients (friction_combination.h); empty: the product.
+  void setFrictionCombiner(RopeFrictionCombiner combiner) { combiner_ = std::move(combiner); }
 
  private:
   struct Candidate {
@@ -78,6 +81,7 @@ class RopeRopeContacts {
   };
   std::vector<std::vector<CapsuleEnd>> ends_;  // per rope: capsule ends (capsule i spans i, i + 1)
   CoupledSolve solver_;
+  RopeFrictionCombiner combiner_;
 };
 
 }  // namespace rope::bullet

@@ -25,6 +25,12 @@ void BulletRopeSettings::validate() const {
     throw InvalidArgument("settings.gravitySource", std::to_string(static_cast<int>(gravitySource)),
                           "must be kWorld or kRod");
   }
+  requireNonNegative("settings.fluidDensity", fluidDensity);
+  requireNonNegative("settings.normalDragCoefficient", normalDragCoefficient);
+  requireNonNegative("settings.tangentialDragCoefficient", tangentialDragCoefficient);
+  requireFinite("settings.windVelocity.x", static_cast<double>(windVelocity.x()));
+  requireFinite("settings.windVelocity.y", static_cast<double>(windVelocity.y()));
+  requireFinite("settings.windVelocity.z", static_cast<double>(windVelocity.z()));
   requirePositive("settings.contactStiffness", contactStiffness);
   requireNonNegative("settings.contactDamping", contactDamping);
   requireNonNegative("settings.speculativeDamping", speculativeDamping);

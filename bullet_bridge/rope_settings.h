@@ -5,6 +5,7 @@
 // The rope's material, gravity and discretisation stay in rope::RodSettings.
 
 #include <LinearMath/btScalar.h>
+#include <LinearMath/btVector3.h>
 
 #include "bullet_bridge/bullet_precision.h"
 
@@ -43,12 +44,16 @@ struct BulletRopeSettings {
   // centre so that the curve can kink there, and keeps it while the load lasts. In (0, 1].
   double concentratedContactRatio = 0.5;
 
-  // Coulomb friction coefficient, >= 0 (0 = frictionless), for rope-body and rope-rope contact.
+  // The rope's own Coulomb friction coefficient, >= 0 (0 = frictionless). Combined the Bullet way
+  // (friction_combination.h): against a body, friction * body.getFriction() (clamped to 10), so the
+  // default 1 gives 0.5 against a default Bullet body (friction 0.5) and a body's setFriction
+  // changes it; against another rope, the product of the two ropes' coefficients (1 by default).
+  // RopeWorld::setBodyFrictionCombiner / setRopeFrictionCombiner replace the rule.
   // Rope-body samples stick (each one held by a tangential spring of lineContactStiffness and
   // lineContactDamping to where it began to stick, carried along the curve as knots come and go)
   // until that spring would need more than friction * normal force, then slide with exactly that
   // force against the sliding direction.
-  double friction = 0.5;
+  double friction = 1.0;
   // Friction speed scale, m/s, > 0. Rope-body: a sliding sample slower than this sticks again at the
   // next substep. Rope-rope: below it the friction force grows linearly with the sliding speed
   // (viscous "sticking"), above it it is mu * f_n against the sliding direction.
@@ -62,6 +67,22 @@ struct BulletRopeSettings {
   enum class GravitySource { kWorld, kRod };
   GravitySource gravitySource = GravitySource::kWorld;
   double gravityScale = 1.0;  // finite, any sign; used with kWorld
+
+  // ---- aerodynamic drag (distributed_loads.cpp; docs/method.md §15) ----
+  // A quadratic (Morison) drag per metre of rope against the fluid moving at windVelocity: with w the
+  // rope's velocity relative to the fluid, split into the parts normal (w_n) and along (w_t) the
+  // rope, q = -(1/2) rho d (C_n |w_n| w_n + pi C_t |w_t| w_t) newtons per metre (d = 2 radius: C_n on
+  // the projected area, C_t on the wetted area), integrated along the rope by Gauss-Legendre and
+  // treated implicitly (its velocity Jacobian enters the rope's step), so it is stable at any speed.
+  // Fluid density, kg/m^3, >= 0; 0 (the default) turns drag off. Air 1.2, water 1000.
+  double fluidDensity = 0.0;
+  // Cross-flow drag coefficient of the rope's cylinder, >= 0 (about 1.2 for a smooth cylinder at
+  // Reynolds numbers 1e3-1e5).
+  double normalDragCoefficient = 1.2;
+  // Skin-friction coefficient along the rope, >= 0 (about 0.01 for a rope in axial flow).
+  double tangentialDragCoefficient = 0.01;
+  // Velocity of the fluid, m/s, world frame, finite (wind, a current).
+  btVector3 windVelocity{0, 0, 0};
 
   // ---- rope-rope and self-contact: point contacts (rope_rope_contact.h) ----
   // Penalty stiffness of one contact point, N/m, > 0; its damping along the normal, N s/m, >= 0; and

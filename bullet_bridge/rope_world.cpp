@@ -93,6 +93,7 @@ void RopeWorld::removeRope(RopeObject& rope) {
   report_.contacts.clear();
   report_.ropes.clear();
   report_.ropeContacts.clear();
+  report_.attachments.clear();
 }
 
 void RopeWorld::sortCapsulePairs() {
@@ -157,6 +158,8 @@ void RopeWorld::substep(double h) {
     rope->countSubstep();
     report_.contacts.insert(report_.contacts.end(), rope->contacts().begin(), rope->contacts().end());
     report_.ropes.push_back(rope->lastStep());
+    report_.attachments.insert(report_.attachments.end(), rope->attachmentLoads().begin(),
+                               rope->attachmentLoads().end());
   }
   runCallback();
 }
@@ -168,6 +171,7 @@ void RopeWorld::startReport(double h) {
   report_.contacts.clear();
   report_.ropes.clear();
   report_.ropeContacts.clear();
+  report_.attachments.clear();
   report_.ropeContactFailure = "";
 }
 

@@ -39,6 +39,7 @@
 
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/contact_report.h"
+#include "bullet_bridge/friction_combination.h"
 #include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/rope_rope_contact.h"
 #include "bullet_bridge/rope_warnings.h"
@@ -46,6 +47,7 @@
 namespace rope::bullet {
 
 class RopeWorld {
+  friend class RopeObject;  // reads the friction combiner
  public:
   explicit RopeWorld(btDiscreteDynamicsWorld& world);
   ~RopeWorld();
@@ -76,6 +78,15 @@ class RopeWorld {
   const RopeWorldWarnings& warnings() const { return warnings_; }
   const std::string& lastError() const { return lastError_; }
 
+  // Friction of rope-body and rope-rope contacts (friction_combination.h). By default Bullet's rule,
+  // the product of the two coefficients clamped to 10 (rope: BulletRopeSettings::friction; body:
+  // btCollisionObject::getFriction()); a combiner set here replaces it for every rope of this world
+  // from the next substep on (an empty function restores the default). It runs inside
+  // stepSimulation and must return a finite value >= 0: anything else (or an exception) fails that
+  // rope's substep, which is counted (RopeObject::warnings()) and leaves the rope as it was.
+  void setBodyFrictionCombiner(BodyFrictionCombiner combiner) { bodyFrictionCombiner_ = std::move(combiner); }
+  void setRopeFrictionCombiner(RopeFrictionCombiner combiner) { ropeRopeContacts_.setFrictionCombiner(std::move(combiner)); }
+
   // Whether btDiscreteDynamicsWorld::debugDrawWorld also draws the ropes (rope_debug_draw.h). Default on.
   void setDebugDrawEnabled(bool enabled) { debugDraw_ = enabled; }
   bool debugDrawEnabled() const { return debugDraw_; }
@@ -104,6 +115,7 @@ class RopeWorld {
   RopeRopeContacts ropeRopeContacts_;
   ContactReport report_;
   std::function<void(const ContactReport&)> callback_;
+  BodyFrictionCombiner bodyFrictionCombiner_;
   RopeWorldWarnings warnings_;
   std::string lastError_;
   bool debugDraw_ = true;

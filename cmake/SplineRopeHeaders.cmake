@@ -65,6 +65,7 @@ set(SPLINEROPE_BULLET_BRIDGE_API_HEADERS
   bullet_bridge/capsule_proxies.h
   bullet_bridge/bullet_precision.h
   bullet_bridge/rope_warnings.h
+  bullet_bridge/friction_combination.h
 )
 set(SPLINEROPE_BULLET_BRIDGE_SUPPORT_HEADERS
   bullet_bridge/contact_response.h   # via attachment.h and rope_rope_contact.h
@@ -86,6 +87,7 @@ set(SPLINEROPE_BULLET_BRIDGE_INTERNAL_HEADERS
   bullet_bridge/body_state.h
   bullet_bridge/world_membership.h
   bullet_bridge/guarded_call.h
+  bullet_bridge/distributed_loads.h
 )
 
 set(SPLINEROPE_RENDER_API_HEADERS

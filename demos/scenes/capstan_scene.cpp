@@ -127,16 +127,21 @@ CapstanScene::CapstanScene(const CapstanSceneSettings& settings) : settings_(set
     btTransform transform;
     transform.setIdentity();
     transform.setOrigin(btVector3(0, height, 0));
+    // Friction 1: the contact's coefficient (the product, friction_combination.h) is the rope's mu.
     physics_.addBody(std::make_unique<btCylinderShapeZ>(
                          btVector3(r, r, static_cast<btScalar>(settings.cylinderHalfLength))),
-                     0.0, transform);
+                     0.0, transform)
+        ->setFriction(btScalar(1.0));
   } else {
     // Stretched to tautTension between its two pinned ends: rest length span / (1 + T / EA).
     RodSettings taut = settings.rod;
     taut.restLength = settings.tautSpan / (1.0 + settings.tautTension / taut.axialStiffness());
     const double z = 0.5 * settings.tautSpan;
+    // Friction 1 on the taut rope: the rope-rope coefficient (the product) is the wrapped rope's mu.
+    bullet::BulletRopeSettings tautBridge = bridge;
+    tautBridge.friction = 1.0;
     taut_ = std::make_unique<bullet::RopeObject>(
-        Rod::fromSegment(taut, Vec3(0.0, settings.height, -z), Vec3(0.0, settings.height, z)), bridge);
+        Rod::fromSegment(taut, Vec3(0.0, settings.height, -z), Vec3(0.0, settings.height, z)), tautBridge);
     physics_.ropes().addRope(*taut_);
     taut_->attachToPoint(taut_->rod().beginParameter(), btVector3(0, height, static_cast<btScalar>(-z)));
     taut_->attachToPoint(taut_->rod().endParameter(), btVector3(0, height, static_cast<btScalar>(z)));

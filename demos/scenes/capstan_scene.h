@@ -42,7 +42,7 @@ struct CapstanSceneSettings {
   enum class Obstacle { kCylinder, kTautRope };
   Obstacle obstacle = Obstacle::kCylinder;
   double wrapAngle = 3.14159265358979323846;  // theta, rad, in (0, 4 pi]
-  double friction = 0.3;         // mu, >= 0: BulletRopeSettings::friction of the rope (and the taut rope)
+  double friction = 0.3;         // mu, >= 0: the contact's coefficient (the rope's friction; the cylinder and the taut rope carry 1)
   double loadRatio = 1.0;        // T_heavy / T_light, >= 1
   double heavyLoad = 10.0;       // N, > 0: the heavy end's load; the light one is heavyLoad / loadRatio
   double cylinderRadius = 0.05;  // m, > 0 (kCylinder)

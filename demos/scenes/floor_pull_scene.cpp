@@ -33,7 +33,8 @@ FloorPullScene::FloorPullScene(const FloorPullSceneSettings& settings)
   validate(settings);
   // The floor: a 6 m x 2 m box whose top face is y = 0 (the rope slides about 0.5 m in the first second
   // at the default pull).
-  physics_.addBox(btVector3(3, btScalar(0.1), 1), 0.0, btVector3(0, btScalar(-0.1), 0));
+  // Friction 1: the contact's coefficient (the product, friction_combination.h) is the rope's mu.
+  physics_.addBox(btVector3(3, btScalar(0.1), 1), 0.0, btVector3(0, btScalar(-0.1), 0))->setFriction(btScalar(1.0));
   RodSettings rod = settings.rod;
   rod.restLength = settings.ropeLength;
   rod.gravity = Vec3(settings.pullAcceleration, -settings.gravity, 0.0);

@@ -19,7 +19,7 @@
 namespace rope::demos {
 
 struct FloorPullSceneSettings {
-  double friction = 0.5;          // mu, >= 0
+  double friction = 0.5;          // mu, >= 0: the contact's coefficient (the floor's Bullet friction is 1)
   double pullAcceleration = 6.0;  // F / m, m/s^2, finite (along +x)
   double gravity = 9.81;          // g, m/s^2, > 0 (downwards, the world's and the rope's)
   double ropeLength = 1.0;        // m, > 0

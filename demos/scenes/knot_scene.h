@@ -35,7 +35,7 @@ struct KnotSceneSettings {
   // 5 mm radius limp nylon cord (E = 1e8 Pa, EI = 1e-4 N m^2), damped; up to 160 control points.
   static RodSettings defaultRod();
   // The default contact law (1e4 N/m: a knot pulled at 3 N sinks into itself by about a millimetre)
-  // and speculative margin, with friction 0.3.
+  // and speculative margin, with friction 0.3 at every contact (sqrt(0.3) on each surface: Bullet's product).
   static bullet::BulletRopeSettings defaultBridge();
   static KnotSceneSettings gravity();  // kGravity, with a heavy cord (0.3 kg/m) whose weight ties the knot
 };

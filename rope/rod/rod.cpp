@@ -405,15 +405,20 @@ void Rod::addSpringSample(double s, const Vec3& force, const Eigen::Matrix3d& st
   queueSpring(s, force, stiffness, damping, false);
 }
 
+void Rod::addTangentSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
+                           const Eigen::Matrix3d& damping) {
+  queueSpring(s, force, stiffness, damping, true, 1);
+}
+
 void Rod::queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping,
-                      bool interaction) {
+                      bool interaction, int derivative) {
   validateParameter(s);
   requireFiniteVector("force", force);
   requireFiniteMatrix("stiffness", stiffness);
   requireFiniteMatrix("damping", damping);
   // Only the symmetric part is meaningful for a potential/dissipative interaction.
   springs_.push_back({s, force, 0.5 * (stiffness + stiffness.transpose()), 0.5 * (damping + damping.transpose()),
-                      interaction});
+                      interaction, derivative});
   trialValid_ = false;
 }
 
@@ -597,16 +602,18 @@ bool Rod::assembleAndSolve(double h, StepReport& report) {
   }
   for (const Spring& spring : springs_) {
     const int k = knots_.findSpan(spring.parameter);
-    evaluateBasis(knots_, k, spring.parameter, 0, basis);
+    const int order = spring.derivative;  // 0: on C(s), 1: on C'(s)
+    evaluateBasis(knots_, k, spring.parameter, order, basis);
+    const auto& b = basis.d[static_cast<size_t>(order)];
     const int first = k - d;
     Vec3 u = Vec3::Zero();
-    for (int a = 0; a < local; ++a) u += basis.d[0][static_cast<size_t>(a)] * velocities_[static_cast<size_t>(first + a)];
+    for (int a = 0; a < local; ++a) u += b[static_cast<size_t>(a)] * velocities_[static_cast<size_t>(first + a)];
     const Vec3 force = spring.force - h * (spring.stiffness * u);
     const Eigen::Matrix3d matrix = h * h * spring.stiffness + h * spring.damping;
     for (int a = 0; a < local; ++a) {
-      const double ba = basis.d[0][static_cast<size_t>(a)];
+      const double ba = b[static_cast<size_t>(a)];
       force_[static_cast<size_t>(first + a)] += ba * force;
-      for (int b = 0; b <= a; ++b) system_.addBlock(first + a, first + b, (ba * basis.d[0][static_cast<size_t>(b)]) * matrix);
+      for (int c = 0; c <= a; ++c) system_.addBlock(first + a, first + c, (ba * b[static_cast<size_t>(c)]) * matrix);
     }
   }
 

@@ -28,6 +28,11 @@
 //       current state, K_c = -df/dx and D_c = -df/du (3x3, symmetric positive semidefinite for
 //       stability). It adds b_i(s) b_j(s) (h^2 K_c + h D_c) to the system and h b_i(s) (f0 - h K_c u)
 //       to the right-hand side, exactly like the rod's own stiffness: contact treated implicitly.
+//   addTangentSpring(s, f0, K_c, D_c)  the same on the curve's derivative C'(s) instead of C(s): f0 is
+//       a generalised force conjugate to C'(s) (N per unit of C'), K_c, D_c its Jacobians in C' and
+//       Cdot'; it adds b_i'(s) b_j'(s) (h^2 K_c + h D_c) and h b_i'(s) (f0 - h K_c Cdot'). Net force
+//       zero (the b_i' sum to zero), moment C'(s) x f0 on the rope: a rotational spring, e.g. the
+//       tangent of a rope clamped to a rigid body (the bridge's clampToBody).
 //   addSpringSample(s, f0, K_c, D_c)  the same, for one quadrature sample of a distributed load (a
 //       line contact, docs/method.md): it enters the system identically but is not an interaction
 //       point, so it does not ask adaptivity for a knot at s.
@@ -169,6 +174,8 @@ class Rod {
                  const Eigen::Matrix3d& damping);
   void addSpringSample(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
                        const Eigen::Matrix3d& damping);
+  void addTangentSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness,
+                        const Eigen::Matrix3d& damping);
   void clearLoads();
 
   // One step of h seconds (finite, > 0, else InvalidArgument "h"): solveTrial(h), then commitTrial()
@@ -232,9 +239,10 @@ class Rod {
     Eigen::Matrix3d stiffness;
     Eigen::Matrix3d damping;
     bool interaction;  // false for a quadrature sample of a distributed load (no knot)
+    int derivative;    // 0: acts on C(s); 1: on C'(s) (addTangentSpring)
   };
   void queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping,
-                   bool interaction);
+                   bool interaction, int derivative = 0);
 
 
  public:

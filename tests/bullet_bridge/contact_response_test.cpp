@@ -114,7 +114,8 @@ RampResult runRamp(double mu) {
   btTransform ramp;
   ramp.setIdentity();
   ramp.setRotation(btQuaternion(btVector3(0, 0, 1), btScalar(-angle)));  // descends towards +x
-  physics.addBox(btVector3(3.0, 0.1, 0.5), 0.0, ramp);
+  // Friction 1 on the ramp: the contact's coefficient (the product, friction_combination.h) is mu.
+  physics.addBox(btVector3(3.0, 0.1, 0.5), 0.0, ramp)->setFriction(btScalar(1.0));
   const Vec3 down(std::cos(angle), -std::sin(angle), 0.0);
   const Vec3 up(std::sin(angle), std::cos(angle), 0.0);  // the ramp's top-face normal
   RodSettings rod = demos::DrapeSceneSettings::defaultRod();

@@ -116,7 +116,10 @@ TEST(UserGuide, BulletRopeSettings) {
        field("frictionVelocity", &S::frictionVelocity),
        enumField("gravitySource", &S::gravitySource,
                  {{S::GravitySource::kWorld, "GravitySource::kWorld"}, {S::GravitySource::kRod, "GravitySource::kRod"}}),
-       field("gravityScale", &S::gravityScale), field("contactStiffness", &S::contactStiffness),
+       field("gravityScale", &S::gravityScale), field("fluidDensity", &S::fluidDensity),
+       field("normalDragCoefficient", &S::normalDragCoefficient),
+       field("tangentialDragCoefficient", &S::tangentialDragCoefficient),
+       field("windVelocity", &S::windVelocity), field("contactStiffness", &S::contactStiffness),
        field("contactDamping", &S::contactDamping), field("speculativeDamping", &S::speculativeDamping),
        field("capsulesPerSpan", &S::capsulesPerSpan), field("speculativeMargin", &S::speculativeMargin),
        field("initialPredictionTime", &S::initialPredictionTime),
@@ -130,7 +133,9 @@ TEST(UserGuide, AttachmentSettings) {
   using S = AttachmentSettings;
   checkSettingsTable(StructSpec<S>{"rope::bullet::AttachmentSettings",
                                    "attachment.",
-                                   {field("stiffness", &S::stiffness), field("damping", &S::damping)},
+                                   {field("stiffness", &S::stiffness), field("damping", &S::damping),
+                                    field("angularStiffness", &S::angularStiffness),
+                                    field("angularDamping", &S::angularDamping)},
                                    [](const S& settings) { settings.validate(); }});
 }
 

@@ -184,17 +184,37 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
     return std::tie(a.distance, a.ropeA, a.sA, a.ropeB, a.sB) < std::tie(b.distance, b.ropeA, b.sA, b.ropeB, b.sB);
   });
+  // The accepted ones are also kept ordered by (ropeA, ropeB, arcA), so each test looks only at those
+  // within one spacing along A: O(c log c) instead of comparing every candidate with every accepted
+  // one (a tight knot has hundreds of candidates).
+  const auto byArc = [this](int x, double arc, int ropeA, int ropeB) {
+    const Candidate& k = candidates_[static_cast<size_t>(x)];
+    return std::tie(k.ropeA, k.ropeB, k.arcA) < std::tie(ropeA, ropeB, arc);
+  };
+  keptByArc_.clear();
   size_t kept = 0;
   for (size_t c = 0; c < candidates_.size(); ++c) {
-    const Candidate& candidate = candidates_[c];
+    const Candidate candidate = candidates_[c];
+    auto it = std::lower_bound(keptByArc_.begin(), keptByArc_.end(), candidate.arcA - candidate.spacing,
+                               [&](int x, double arc) { return byArc(x, arc, candidate.ropeA, candidate.ropeB); });
     bool near = false;
-    for (size_t a = 0; a < kept && !near; ++a) {
-      const Candidate& other = candidates_[a];
-      near = other.ropeA == candidate.ropeA && other.ropeB == candidate.ropeB &&
-             std::abs(other.arcA - candidate.arcA) < candidate.spacing &&
+    for (; it != keptByArc_.end() && !near; ++it) {
+      const Candidate& other = candidates_[static_cast<size_t>(*it)];
+      if (other.ropeA != candidate.ropeA || other.ropeB != candidate.ropeB || !(other.arcA < candidate.arcA + candidate.spacing))
+        break;
+      near = std::abs(other.arcA - candidate.arcA) < candidate.spacing &&
              std::abs(other.arcB - candidate.arcB) < candidate.spacing;
     }
-    if (!near) candidates_[kept++] = candidate;
+    if (near) continue;
+    candidates_[kept] = candidate;
+    const auto at = std::upper_bound(keptByArc_.begin(), keptByArc_.end(), static_cast<int>(kept),
+                                     [this](int x, int y) {
+                                       const Candidate& a = candidates_[static_cast<size_t>(x)];
+                                       const Candidate& b = candidates_[static_cast<size_t>(y)];
+                                       return std::tie(a.ropeA, a.ropeB, a.arcA) < std::tie(b.ropeA, b.ropeB, b.arcA);
+                                     });
+    keptByArc_.insert(at, static_cast<int>(kept));
+    ++kept;
   }
   candidates_.resize(kept);
   for (Candidate& candidate : candidates_) {

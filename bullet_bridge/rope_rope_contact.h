@@ -68,6 +68,7 @@ class RopeRopeContacts {
     bool active;
   };
   std::vector<Candidate> candidates_;
+  std::vector<int> keptByArc_;  // accepted candidates ordered by (ropeA, ropeB, arcA), during the thinning
   std::vector<PointCoupling> couplings_;
   std::vector<CouplingLaw> laws_;
   std::vector<int> coupled_;  // candidate index of each coupling

@@ -37,11 +37,8 @@ FloorPullScene::FloorPullScene(const FloorPullSceneSettings& settings)
   physics_.addBox(btVector3(3, btScalar(0.1), 1), 0.0, btVector3(0, btScalar(-0.1), 0))->setFriction(btScalar(1.0));
   RodSettings rod = settings.rod;
   rod.restLength = settings.ropeLength;
-  rod.gravity = Vec3(settings.pullAcceleration, -settings.gravity, 0.0);
   bullet::BulletRopeSettings bridge = settings.bridge;
   bridge.friction = settings.friction;
-  // The pull is the horizontal part of the rope's own gravity (RodSettings::gravity), not the world's.
-  bridge.gravitySource = bullet::BulletRopeSettings::GravitySource::kRod;
   const double half = 0.5 * settings.ropeLength;
   // Lying on the floor: the centre line one radius above it.
   rope_ = std::make_unique<bullet::RopeObject>(
@@ -64,6 +61,11 @@ double FloorPullScene::centreOfMassX() const {
 }
 
 StepMeasurements FloorPullScene::step() {
+  // The pull, per metre of rest length (one substep per step: it acts for the whole step).
+  const Rod& rod = rope_->rod();
+  const double forcePerLength = rod.mass() / rod.restLength() * settings_.pullAcceleration;
+  rope_->applyDistributedForce(rod.beginParameter(), rod.endParameter(),
+                               btVector3(static_cast<btScalar>(forcePerLength), 0, 0));
   const StepMeasurements counts = stepAndCheck(physics_, settings_.timeStep, "floorpull");
   time_ += settings_.timeStep;
   StepMeasurements measurements = measure();

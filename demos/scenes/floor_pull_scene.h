@@ -4,11 +4,10 @@
 // mu (BulletRopeSettings::friction). Coulomb's law for the rope as a whole: it slides with
 //   v(t) = (F - mu m g) / m * t   when F > mu m g,   and stays put (v = 0) when F <= mu m g.
 //
-// How the force is applied: a RopeWorld clears the rod's queued loads at every substep, so today the
-// only distributed force a user can put on a rope in a Bullet world is its own gravity
-// (RodSettings::gravity). The pull is therefore the horizontal component of the rope's gravity,
-// pullAcceleration = F / m along +x, on top of the vertical 9.81 m/s^2; the floor's normal load is
-// still m g. Everything else is the library's defaults (RodSettings{}, BulletRopeSettings{}).
+// How the force is applied: as a user would, by RopeObject::applyDistributedForce over the whole
+// rope before every step, F / L = (m / L) pullAcceleration newtons per metre along +x; the rope
+// follows the world's gravity (9.81 m/s^2 down), so the floor's normal load is m g. Everything else
+// is the library's defaults (RodSettings{}, BulletRopeSettings{}).
 
 #include <memory>
 
@@ -24,7 +23,7 @@ struct FloorPullSceneSettings {
   double gravity = 9.81;          // g, m/s^2, > 0 (downwards, the world's and the rope's)
   double ropeLength = 1.0;        // m, > 0
   double timeStep = 1.0 / 240.0;  // s, > 0
-  RodSettings rod;                // defaults; restLength and gravity are set by the scene
+  RodSettings rod;                // defaults; restLength is set by the scene, gravity is the world's
   bullet::BulletRopeSettings bridge;  // defaults; friction is overwritten by `friction` above
 
   // (F - mu m g) / m clamped at 0: the acceleration Coulomb's law predicts, m/s^2.

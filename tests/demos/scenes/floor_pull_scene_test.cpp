@@ -67,11 +67,12 @@ TEST(FloorPullScene, FrictionlessRopeAcceleratesAtThePull) {
   EXPECT_NEAR(scene.speed(), 1.0, 1e-10);  // measured 3.3e-12 m/s off
 }
 
-TEST(FloorPullScene, PullIsTheRopesHorizontalGravityWithDefaultsOtherwise) {
+TEST(FloorPullScene, PullIsADistributedForceWithDefaultsOtherwise) {
   FloorPullSceneSettings settings;
   FloorPullScene scene(settings);
   const RodSettings& rod = scene.rope().rod().settings();
-  EXPECT_EQ(rod.gravity, Vec3(6.0, -9.81, 0.0));
+  EXPECT_EQ(scene.rope().settings().gravitySource, bullet::BulletRopeSettings::GravitySource::kWorld);
+  EXPECT_EQ(scene.physics().world().getGravity(), btVector3(0, btScalar(-9.81), 0));
   EXPECT_EQ(scene.rope().settings().friction, 0.5);
   EXPECT_EQ(rod.radius, RodSettings{}.radius);
   EXPECT_EQ(scene.rope().rod().controlPointCount(), RodSettings{}.initialControlPoints);
@@ -81,6 +82,12 @@ TEST(FloorPullScene, PullIsTheRopesHorizontalGravityWithDefaultsOtherwise) {
   EXPECT_NEAR(scene.centreOfMassX(), 0.0, 1e-12);
   settings.pullAcceleration = 1.0;
   EXPECT_DOUBLE_EQ(settings.coulombAcceleration(), 0.0);  // below the limit: no acceleration
+  // The first step: the world's gravity and the pull, m a = F along x before the floor's friction acts
+  // on a rope that is not moving yet: the rope's momentum along x changes by at most F h.
+  scene.step();
+  EXPECT_GT(scene.rope().rod().momentum().x(), 0.0);
+  EXPECT_LE(scene.rope().rod().momentum().x(), scene.rope().rod().mass() * 6.0 * scene.timeStep() * (1.0 + 1e-12));
+  EXPECT_EQ(scene.rope().rod().settings().gravity.y(), -9.81);  // from the world
 }
 
 TEST(FloorPullScene, RejectsBadSettingsNamingTheField) {

@@ -76,6 +76,13 @@ std::unique_ptr<RopeObject> RopeObject::cut(double requested) {
   piece->nextAttachmentId_ = nextAttachmentId_;
   piece->winches_[1] = winches_[1];  // the winch at the end goes with the end
   winches_[1] = Winch();
+  // A winchTo target is the whole rope's rest length: each piece's winch aims at its own share.
+  if (piece->winches_[1].targetLength >= 0.0) {
+    piece->winches_[1].targetLength = std::max(0.0, piece->winches_[1].targetLength - rod_.restLength());
+  }
+  if (winches_[0].targetLength >= 0.0) {
+    winches_[0].targetLength = std::max(0.0, winches_[0].targetLength - piece->rod_.restLength());
+  }
   cutPartners_.push_back({piece.get(), s, s});
   piece->cutPartners_.push_back({this, s, s});
   contacts_.clear();

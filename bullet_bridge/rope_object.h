@@ -128,9 +128,11 @@ class RopeObject {
   // that; not exactly at a pin or a body attachment): this object keeps
   // [beginParameter, s] and the returned one is [s, endParameter] (Rod::cut: the two pieces share no
   // basis function, so no mass, energy or force term). Positions, velocities, rest state, pins and
-  // attachments go to the piece they lie on; attachment ids are kept. If this rope is in a world, the
-  // new piece is added to it with the same settings, its own capsules and contacts. The two cut ends
-  // start where they were, overlapping: until they part, contact between the pieces within
+  // attachments go to the piece they lie on; attachment ids are kept. The winch at the end goes with
+  // the new piece (a winchTo target less the rest length this object keeps, and the other way
+  // round). If this rope is in a world, the new piece is added to it with the same settings, its own
+  // capsules and contacts. The two cut ends start where they were, overlapping: until they part,
+  // contact between the pieces within
   // selfContactExclusion of the cut is excluded as if they were still one rope. Throws
   // InvalidArgument ("s") and changes nothing for a bad s. The caller owns the new piece.
   std::unique_ptr<RopeObject> cut(double s);

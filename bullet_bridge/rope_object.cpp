@@ -74,6 +74,15 @@ std::unique_ptr<RopeObject> RopeObject::cut(double requested) {
     }
   }
   piece->nextAttachmentId_ = nextAttachmentId_;
+  piece->winches_[1] = winches_[1];  // the winch at the end goes with the end
+  winches_[1] = Winch();
+  // A winchTo target is the whole rope's rest length: each piece's winch aims at its own share.
+  if (piece->winches_[1].targetLength >= 0.0) {
+    piece->winches_[1].targetLength = std::max(0.0, piece->winches_[1].targetLength - rod_.restLength());
+  }
+  if (winches_[0].targetLength >= 0.0) {
+    winches_[0].targetLength = std::max(0.0, winches_[0].targetLength - piece->rod_.restLength());
+  }
   cutPartners_.push_back({piece.get(), s, s});
   piece->cutPartners_.push_back({this, s, s});
   contacts_.clear();
@@ -304,6 +313,7 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
 
 void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
   requirePositive("h", h);
+  runWinches(h);  // winch.h: the ends move before anything reads the rope
   if (settings_.fluidDensity > 0.0) {
     // Drag at the state the substep starts from (distributed_loads.h), queued with the user's loads.
     const double diameter = 2.0 * rod_.settings().radius;

@@ -30,6 +30,7 @@
 #include "bullet_bridge/friction_combination.h"
 #include "bullet_bridge/rope_settings.h"
 #include "bullet_bridge/rope_warnings.h"
+#include "bullet_bridge/winch.h"
 #include "rope/rod/rod.h"
 
 namespace rope::bullet {
@@ -101,14 +102,37 @@ class RopeObject {
   // Every attachment's load after the last substep (also in RopeWorld::lastReport().attachments).
   const std::vector<RopeAttachmentRecord>& attachmentLoads() const { return attachmentLoads_; }
 
+  // ---- winch (winch.h; docs/method.md §16) ----
+  // Pays out (length > 0) or reels in (< 0) `length` m of rest length at `end` now (Rod::payOut);
+  // attachments at that end move with it. Throws InvalidArgument naming "end", "length" (not finite,
+  // or more than reelInLimit(end)) and changes nothing.
+  void payOut(RopeEnd end, double length);
+  // A winch that runs from the next substep on at `speed` m/s of rest length (> 0 pays out, < 0
+  // reels in, 0 stops), until stopped or, reeling in, until reelInLimit (Winch::stalled). Throws
+  // InvalidArgument naming "end" or "speed" (not finite or |speed| > kMaxWinchSpeed).
+  void setWinchSpeed(RopeEnd end, double speed);
+  // A winch that runs at `speed` (> 0, <= kMaxWinchSpeed) until the rope's rest length is
+  // `restLength` (m), paying out or reeling in as needed, and stops there exactly. Throws
+  // InvalidArgument naming "end", "speed", or "restLength" (not finite, or shorter than reelInLimit
+  // allows) and changes nothing.
+  void winchTo(RopeEnd end, double restLength, double speed);
+  const Winch& winch(RopeEnd end) const;
+  // The tension at the winch: the rope's axial force at its end (tension(s) at that end), N.
+  double winchTension(RopeEnd end) const;
+  // How much rest length can be reeled in at `end` (m): the rope keeps Rod::minimumRestLength() and
+  // RodSettings::minKnotSpacing from every pin, clamp, attachment and queued load not at that end.
+  double reelInLimit(RopeEnd end) const;
+
   // ---- cutting ([A] §5.1) ----
   // Cuts the rope at s (Rod::cutPoint: on a knot within minKnotSpacing of s; no piece shorter than
   // that; not exactly at a pin or a body attachment): this object keeps
   // [beginParameter, s] and the returned one is [s, endParameter] (Rod::cut: the two pieces share no
   // basis function, so no mass, energy or force term). Positions, velocities, rest state, pins and
-  // attachments go to the piece they lie on; attachment ids are kept. If this rope is in a world, the
-  // new piece is added to it with the same settings, its own capsules and contacts. The two cut ends
-  // start where they were, overlapping: until they part, contact between the pieces within
+  // attachments go to the piece they lie on; attachment ids are kept. The winch at the end goes with
+  // the new piece (a winchTo target less the rest length this object keeps, and the other way
+  // round). If this rope is in a world, the new piece is added to it with the same settings, its own
+  // capsules and contacts. The two cut ends start where they were, overlapping: until they part,
+  // contact between the pieces within
   // selfContactExclusion of the cut is excluded as if they were still one rope. Throws
   // InvalidArgument ("s") and changes nothing for a bad s. The caller owns the new piece.
   std::unique_ptr<RopeObject> cut(double s);
@@ -164,6 +188,10 @@ class RopeObject {
   // Adds the substep's outcome to warnings_ (called once per substep, after endSubstep or skipSubstep).
   void countSubstep();
   int findAttachment(int id) const;
+  // winch.cpp: the parameter of an end; the end moved with its attachments; the winches' substep.
+  double endParameter(RopeEnd end) const;
+  void moveRopeEnd(RopeEnd end, double length);
+  void runWinches(double h);
   void requireNewBodyPoint(double s, const btRigidBody& body) const;  // rope_object_failures.cpp
   // The springs of the body attachments for this substep (pending_), capped on light bodies.
   void queueAttachments(double h);
@@ -205,6 +233,7 @@ class RopeObject {
   RopeWarnings warnings_;
   std::string lastError_;
   int droppedAttachments_ = 0;  // by dropDepartedAttachments in the current substep
+  Winch winches_[2];            // at kBegin, kEnd
 };
 
 }  // namespace rope::bullet

@@ -54,6 +54,7 @@ set(SPLINEROPE_BULLET_BRIDGE_API_HEADERS
   bullet_bridge/rope_object.h
   bullet_bridge/rope_settings.h
   bullet_bridge/attachment.h
+  bullet_bridge/winch.h
   bullet_bridge/contact_report.h
   bullet_bridge/rope_queries.h
   bullet_bridge/rope_debug_draw.h

@@ -10,6 +10,7 @@
 #include "demos/scenes/resting_rope_scene.h"
 #include "demos/scenes/sweep_scene.h"
 #include "demos/scenes/tractrix_scene.h"
+#include "demos/scenes/winch_scene.h"
 
 namespace rope::demos {
 
@@ -44,6 +45,9 @@ const std::vector<SceneEntry>& sceneCatalogue() {
        5.0, [] { return std::unique_ptr<DemoScene>(new DrapeScene(DrapeSceneSettings::thinBar())); }},
       {"crane", "Bullet world: a 10 kg box on a 0.01 kg/m rope, attached at both ends; the top is lifted",
        8.0, [] { return std::unique_ptr<DemoScene>(new CraneScene(CraneSceneSettings{})); }},
+      {"winch",
+       "Bullet world: a crane's winch lowers a 10 kg box by 0.5 m at 0.1 m/s and lifts it back (winch tension in --stats)",
+       14.0, [] { return std::unique_ptr<DemoScene>(new WinchScene(WinchSceneSettings{})); }},
       {"cut", "Bullet world: a box swinging on a rope; the rope is cut at 1 s, the box falls, the top piece swings on",
        3.0, [] { return std::unique_ptr<DemoScene>(new CutScene(CutSceneSettings{})); }},
       {"capstan",

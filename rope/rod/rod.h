@@ -227,6 +227,25 @@ class Rod {
   // settings.minKnotSpacing.
   double cutPoint(double s) const;
 
+  // ---- paying out and reeling in (a winch; rod_winch.cpp, docs/method.md §16) ----
+  enum class End { kBegin, kEnd };
+  // Pays out `length` metres of rest length at one end (length > 0; < 0 reels in): the end parameter
+  // moves so that the rest arc length changes by exactly `length`, and the end span's polynomial is
+  // re-expressed on the moved end knots (positions, velocities and rest curve alike), so the curve,
+  // its velocity field and the rest metric of the remaining rope do not change. A knot enters at the
+  // middle of the end span (exact insertion) when the span grows past twice the nominal spacing
+  // settings.restLength / (settings.initialControlPoints - degree); the neighbouring knot leaves
+  // (Rod::removeKnot) before the end span would become shorter than settings.minKnotSpacing. Pins and
+  // clamps at the end move with it; other pins, queued loads and the trial keep their parameters (the
+  // trial is dropped). Mass changes by linearDensity * length. Throws InvalidArgument("length", ...)
+  // and changes nothing for a non-finite length, a rest length that would fall below
+  // minimumRestLength(), or reeling in further than reelInLimit(end).
+  void payOut(End end, double length);
+  // How much rest length (m) can be reeled in at `end`: down to minimumRestLength(), and no closer
+  // than settings.minKnotSpacing to a pin, clamp or queued load that is not at that end.
+  double reelInLimit(End end) const;
+  double minimumRestLength() const { return 2.0 * settings_.minKnotSpacing; }  // m
+
  private:
   struct PointLoad {
     double parameter;
@@ -287,6 +306,10 @@ class Rod {
   // Applies a planned removal to knots, points, velocities, rest state and integrals together.
   void applyRemoval(const KnotRemoval& plan);
   bool isNearInteraction(double s) const;
+  // rod_winch.cpp: moves the end by a rest length that keeps it inside the end span (reel-in) or
+  // extends the end span (pay-out), no knot change.
+  void moveEnd(End end, double length);
+  double endSpanRestLength(End end) const;
 
   RodSettings settings_;
   KnotVector knots_;

@@ -71,6 +71,7 @@ using bullet::AttachmentSettings;
 using bullet::BulletRopeSettings;
 using bullet::KinematicRope;
 using bullet::KinematicRopeSettings;
+using bullet::RopeEnd;
 using bullet::RopeObject;
 using bullet::RopeWorld;
 using test::ActionWorld;
@@ -91,6 +92,9 @@ struct Fixture {
   int pinAttachment = 0;
   int boxAttachment = 0;
   Rod rod = Rod::fromSegment(RodSettings{}, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  // Winches: a rod with a pin at 0.3 and a clamp at 0.7, a rope with a body attachment at 0.4.
+  Rod winchRod = Rod::fromSegment(RodSettings{}, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  RopeObject winchRope{Rod::fromSegment(RodSettings{}, Vec3(0, 1, 1), Vec3(1, 1, 1))};
   KinematicRope hose{TractrixRope(PointList{Vec3(0, 3, 0), Vec3(1, 3, 0)}, TractrixSettings{})};
   TractrixRope tractrix{PointList{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0)}, TractrixSettings{}};
   KnotVector knots = KnotVector::clampedUniform(3, 6);
@@ -103,6 +107,10 @@ struct Fixture {
     pinAttachment = rope.attachToPoint(0.0, btVector3(0, 1, 0));
     boxAttachment = rope.attachToBody(1.0, *box, btVector3(0, 0, 0));
     rod.pin(0.0);
+    winchRod.pin(0.3);
+    winchRod.clamp(0.7);
+    ropes.addRope(winchRope);
+    winchRope.attachToBody(0.4, *box, btVector3(0, 0, 0));
     hose.addToWorld(bullet.world());
     scene.add(std::make_shared<render::Mesh>(render::makeBox(Vec3(1, 1, 1))));
     bullet.step(2);
@@ -111,7 +119,13 @@ struct Fixture {
 
   std::vector<double> state() const {
     std::vector<double> all = test::rodState(rod);
-    for (const RopeObject* r : {&rope, &loose}) {
+    const std::vector<double> winchRodState = test::rodState(winchRod);
+    all.insert(all.end(), winchRodState.begin(), winchRodState.end());
+    for (const RopeObject* r : {&rope, &loose, &winchRope}) {
+      for (RopeEnd end : {RopeEnd::kBegin, RopeEnd::kEnd}) {
+        const bullet::Winch& w = r->winch(end);
+        all.insert(all.end(), {w.speed, w.targetLength, w.stalled ? 1.0 : 0.0, w.paidOut});
+      }
       const std::vector<double> part = test::rodState(r->rod());
       all.insert(all.end(), part.begin(), part.end());
       all.push_back(r->world() != nullptr ? 1.0 : 0.0);
@@ -437,6 +451,37 @@ std::vector<Case> allCases() {
          settings.angularStiffness = 0.0;
          f.rope.clampToBody(0.5, *f.box, btVector3(0, 0, 0), btVector3(1, 0, 0), settings);
        }},
+      // Winches (Rod::payOut, RopeObject::payOut / setWinchSpeed / winchTo; winch.h).
+      {"rod payOut NaN", "length", "nan", [](Fixture& f) { f.winchRod.payOut(Rod::End::kBegin, kNaN); }},
+      {"rod payOut inf", "length", "inf", [](Fixture& f) { f.winchRod.payOut(Rod::End::kEnd, kInf); }},
+      {"rod payOut reels past a pin", "length", "-0.29999999999999999",
+       [](Fixture& f) { f.winchRod.payOut(Rod::End::kBegin, -0.3); }},
+      {"rod payOut reels past a clamp", "length", "-0.29999999999999999",
+       [](Fixture& f) { f.winchRod.payOut(Rod::End::kEnd, -0.3); }},
+      {"rod payOut below the minimum length", "length", "-0.999", [](Fixture& f) { f.rod.payOut(Rod::End::kEnd, -0.999); }},
+      {"rod payOut end not an End", "end", "7",
+       [](Fixture& f) { f.winchRod.payOut(static_cast<Rod::End>(7), 0.1); }},
+      {"rope payOut NaN", "length", "nan", [](Fixture& f) { f.winchRope.payOut(RopeEnd::kEnd, kNaN); }},
+      {"rope payOut reels past a body attachment", "length", "-0.5",
+       [](Fixture& f) { f.winchRope.payOut(RopeEnd::kBegin, -0.5); }},
+      {"rope payOut below the minimum length", "length", "-0.999",
+       [](Fixture& f) { f.loose.payOut(RopeEnd::kEnd, -0.999); }},
+      {"rope payOut end not a RopeEnd", "end", "3", [](Fixture& f) { f.loose.payOut(static_cast<RopeEnd>(3), 0.1); }},
+      {"rope setWinchSpeed NaN", "speed", "nan", [](Fixture& f) { f.winchRope.setWinchSpeed(RopeEnd::kBegin, kNaN); }},
+      {"rope setWinchSpeed too fast", "speed", "-101",
+       [](Fixture& f) { f.winchRope.setWinchSpeed(RopeEnd::kBegin, -101.0); }},
+      {"rope setWinchSpeed end not a RopeEnd", "end", "2",
+       [](Fixture& f) { f.winchRope.setWinchSpeed(static_cast<RopeEnd>(2), 0.1); }},
+      {"rope winchTo restLength NaN", "restLength", "nan",
+       [](Fixture& f) { f.winchRope.winchTo(RopeEnd::kEnd, kNaN, 0.1); }},
+      {"rope winchTo past a body attachment", "restLength", "0.5",
+       [](Fixture& f) { f.winchRope.winchTo(RopeEnd::kBegin, 0.5, 0.1); }},
+      {"rope winchTo below the minimum length", "restLength", "0.001",
+       [](Fixture& f) { f.loose.winchTo(RopeEnd::kBegin, 0.001, 0.1); }},
+      {"rope winchTo speed 0", "speed", "0", [](Fixture& f) { f.winchRope.winchTo(RopeEnd::kEnd, 2.0, 0.0); }},
+      {"rope winchTo speed inf", "speed", "inf", [](Fixture& f) { f.winchRope.winchTo(RopeEnd::kEnd, 2.0, kInf); }},
+      {"rope winchTension end not a RopeEnd", "end", "9",
+       [](Fixture& f) { f.winchRope.winchTension(static_cast<RopeEnd>(9)); }},
       {"rope tension s outside", "s", "2", [](Fixture& f) { f.rope.tension(2.0); }},
       {"rope attachmentTension unknown id", "id", "77", [](Fixture& f) { f.rope.attachmentTension(77); }},
       {"rope attachToPoint point inf", "point.z", "inf",

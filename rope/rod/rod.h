@@ -202,7 +202,8 @@ class Rod {
   // ---- explicit refinement and cutting ----
   // Exact insertion ([A] §3.1): positions and velocities along the curve do not change. Explicit edits
   // are not bound by min/maxControlPoints (those limit adaptivity). Throws InvalidArgument("s", ...)
-  // for s outside the open range, at full multiplicity, or (a new knot value) closer than
+  // for s outside the open range, at a knot of multiplicity degree (one more would disconnect the
+  // curve: cut() makes two ropes), or (a new knot value) closer than
   // settings.minKnotSpacing of rest length to a neighbouring knot: so short a span makes every
   // later step fail.
   void insertKnot(double s);

@@ -443,6 +443,18 @@ void Rod::clearLoads() {
 
 // ---- step ----
 
+bool Rod::overstretchedBy(const PointList& next) const {
+  // Leg i of the control polygon against the same leg of the rest polygon: a leg may end the step
+  // longer than kMaxStepStretch times its rest length only if it was already (a rope created
+  // stretched may relax); a leg of zero rest length is not judged.
+  for (size_t i = 0; i + 1 < next.size(); ++i) {
+    const double rest = (rest_[i + 1] - rest_[i]).norm();
+    const double after = (next[i + 1] - next[i]).norm();
+    if (after > kMaxStepStretch * rest && after > (points_[i + 1] - points_[i]).norm() && rest > 0.0) return true;
+  }
+  return false;
+}
+
 StepReport Rod::step(double h) {
   StepReport report = solveTrial(h);
   if (report.ok) return commitTrial();
@@ -640,6 +652,11 @@ bool Rod::assembleAndSolve(double h, StepReport& report) {
   if (!allFinite(newPoints_) || !allFinite(newVelocities_)) {
     report.ok = false;
     report.failure = "the step produced a non-finite state";
+    return false;
+  }
+  if (overstretchedBy(newPoints_)) {
+    report.ok = false;
+    report.failure = "the step stretched a control-polygon leg past Rod::kMaxStepStretch times its rest length";
     return false;
   }
   // P C'(s) = 0 also admits a tangent pointing against the clamp's direction (the rope folded back

@@ -16,9 +16,10 @@
 // (included angle < insertAngle), removal where it is straight (> removeAngle) and the removal error
 // is within removalErrorBound; counts stay within [minControlPoints, maxControlPoints].
 //
-// Failure: bad input throws InvalidArgument and changes nothing. A step whose factorisation fails or
-// whose result is not finite reports ok == false and leaves the rod exactly as it was (loads queued for
-// that step are dropped). Deterministic: the same calls give bitwise identical results.
+// Failure: bad input throws InvalidArgument and changes nothing. A step whose factorisation fails,
+// whose result is not finite, or that stretches a control-polygon leg past kMaxStepStretch times its
+// rest length (a linearised step far outside its range, e.g. h = 1 s on a hanging rope) reports
+// ok == false and leaves the rod exactly as it was (loads queued for that step are dropped). Deterministic: the same calls give bitwise identical results.
 //
 // Hooks for a physics bridge (all "next step only", cleared by step() whether it succeeds or not):
 //   addForce(s, f)    point force f (N) at C(s), explicit.
@@ -171,6 +172,13 @@ class Rod {
                        const Eigen::Matrix3d& damping);
   void clearLoads();
 
+  // A step that leaves a leg of the control polygon longer than this many times the same leg of the
+  // rest polygon (and longer than before the step) fails instead of being committed: a strain of 100 %
+  // is past the breaking strain of real ropes (nylon ~25 %, steel ~2 %) and, reached in one step, is
+  // the linearised step's extrapolation rather than mechanics (measured: h = 1 s on a hanging rope
+  // gave 3.75 times the rest length).
+  static constexpr double kMaxStepStretch = 2.0;
+
   // One step of h seconds (finite, > 0, else InvalidArgument "h"): solveTrial(h), then commitTrial()
   // if the trial succeeded, else the loads are dropped and the rod is unchanged.
   StepReport step(double h);
@@ -272,6 +280,8 @@ class Rod {
   void requireResolvableKnot(double s) const;
   double restDistance(double a, double b) const;  // rest arc length between two parameters, m
   bool assembleAndSolve(double h, StepReport& report);
+  // Whether `next` (end-of-step control points) breaks kMaxStepStretch (rod.cpp).
+  bool overstretchedBy(const PointList& next) const;
   void adapt(StepReport& report);
   void insertKnotUnchecked(double s);
   // Applies a planned removal to knots, points, velocities, rest state and integrals together.

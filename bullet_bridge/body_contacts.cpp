@@ -232,7 +232,12 @@ bool BodyContacts::solveSlidingBounds(Rod& rod, double h) {
   if (!exactBounds_) return false;
   for (std::size_t i = 0; i < samples_.size(); ++i) {
     const Sample& sample = samples_[i];
-    if (sample.active && sample.friction.sliding && sample.law.friction > 0.0) sliding_.push_back(static_cast<int>(i));
+    if (!(sample.active && sample.friction.sliding && sample.law.friction > 0.0)) continue;
+    // On a moving body (a spinning drum) the exact bounds threw a rope wound ten turns round it at
+    // 150 m/s, pass-by-pass ones do not (reliability_extremes_test); not understood yet, so moving
+    // bodies keep the pass-by-pass bounds.
+    if (sample.bodyVelocity.squaredNorm() > 0.0) return false;
+    sliding_.push_back(static_cast<int>(i));
   }
   const int m = static_cast<int>(sliding_.size());
   if (m == 0 || m > kMaxExactBounds) return false;

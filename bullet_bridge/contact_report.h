@@ -57,6 +57,7 @@ struct RopeStepRecord {
   const RopeObject* rope = nullptr;
   bool ok = true;                // false: the rod step failed and the rope kept its state
   const char* failure = "";      // why (static text)
+  bool resting = false;          // the rope is at rest: frozen, still colliding (RopeObject::kFailuresBeforeRest)
   double maxPenetration = 0.0;   // m, deepest contact at the start of the substep (0 if none)
   int contacts = 0;              // active contacts
   int proxyOverflows = 0;        // capsules whose box was too large for Bullet (not updated)

@@ -154,6 +154,22 @@ class RopeObject {
   const RopeWarnings& warnings() const { return warnings_; }
   const std::string& lastError() const { return lastError_; }
 
+  // ---- a rope that keeps failing ----
+  // After this many failed substeps in a row (one simulated second at 240 Hz) a RopeWorld puts the
+  // rope to rest: its velocities are set to zero and it no longer steps, so a rope that cannot be
+  // solved (settings far outside their range, an impossible constraint) costs no more solves and
+  // cannot go wrong, while the world goes on. It stays in the world as a fixed obstacle: bodies still
+  // collide with it (one-way contact, as against a kinematic rope: kinematic_push.h), its capsules
+  // stay in the broadphase for queries, and other ropes see it as they see a rope whose step failed.
+  // Each resting substep reports lastStep().ok == false, lastStep().resting == true and the failure
+  // text below, and counts warnings().restingSubsteps; warnings().timesPutToRest counts the events.
+  // wake() lets it try again (from its resting state, at rest).
+  static constexpr int kFailuresBeforeRest = 240;
+  static constexpr const char* kRestingFailure =
+      "the rope failed RopeObject::kFailuresBeforeRest substeps in a row and is at rest (frozen, still colliding)";
+  bool resting() const { return resting_; }
+  void wake();
+
   // One substep of h seconds against the candidate bodies (sorted, deterministic order), on its own:
   // beginSubstep then endSubstep. RopeWorld's action calls the two halves itself, after Bullet's
   // collision detection, solver and integration of the substep, with rope-rope contact in between.
@@ -185,8 +201,12 @@ class RopeObject {
   // An exception (message) was caught in this rope's substep: drops the trial and the queued loads so
   // the rope keeps its last good state, and deactivates the substep's contacts.
   void failSubstep(const char* message);
-  // Adds the substep's outcome to warnings_ (called once per substep, after endSubstep or skipSubstep).
+  // Adds the substep's outcome to warnings_ (called once per substep, after endSubstep or skipSubstep)
+  // and puts the rope to rest after kFailuresBeforeRest failures in a row.
   void countSubstep();
+  // A substep at rest: the rope does not move; dynamic bodies touching it are pushed out of it
+  // (one-way contact with the rope's friction), the contacts recorded as usual.
+  void restSubstep(const std::vector<const btCollisionObject*>& candidates, double h);
   int findAttachment(int id) const;
   // winch.cpp: the parameter of an end; the end moved with its attachments; the winches' substep.
   double endParameter(RopeEnd end) const;
@@ -234,6 +254,7 @@ class RopeObject {
   std::string lastError_;
   int droppedAttachments_ = 0;  // by dropDepartedAttachments in the current substep
   Winch winches_[2];            // at kBegin, kEnd
+  bool resting_ = false;        // put to rest (kFailuresBeforeRest)
 };
 
 }  // namespace rope::bullet

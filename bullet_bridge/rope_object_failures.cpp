@@ -1,8 +1,13 @@
 // RopeObject: attachments that would break the rope are refused; what a RopeWorld does when a rope's
 // substep cannot run or goes wrong (rope_warnings.h; nothing there throws, it runs inside Bullet's
 // stepSimulation).
+#include <LinearMath/btAabbUtil2.h>
+
 #include <algorithm>
 
+#include "bullet_bridge/body_state.h"
+#include "bullet_bridge/find_contacts.h"
+#include "bullet_bridge/kinematic_push.h"
 #include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/world_membership.h"
 #include "rope/common/error.h"
@@ -67,12 +72,90 @@ void RopeObject::countSubstep() {
   lastStep_.droppedAttachments = droppedAttachments_;
   droppedAttachments_ = 0;
   warnings_.skippedBodies += lastStep_.skippedBodies;
-  if (lastStep_.ok) {
+  if (resting_) {
+    ++warnings_.restingSubsteps;
+  } else if (lastStep_.ok) {
     warnings_.consecutiveFailures = 0;
   } else {
     ++warnings_.failedSteps;
     ++warnings_.consecutiveFailures;
+    if (warnings_.consecutiveFailures >= kFailuresBeforeRest) {
+      resting_ = true;
+      ++warnings_.timesPutToRest;
+      rod_.setVelocities(PointList(static_cast<std::size_t>(rod_.controlPointCount()), Vec3::Zero()));
+      lastStep_.resting = true;
+      lastStep_.failure = kRestingFailure;
+    }
   }
+}
+
+void RopeObject::wake() {
+  resting_ = false;
+  warnings_.consecutiveFailures = 0;
+}
+
+void RopeObject::restSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
+  rod_.clearLoads();  // loads queued on a resting rope act on nothing
+  pending_.clear();
+  contacts_.clear();
+  lastStep_ = RopeStepRecord();
+  lastStep_.rope = this;
+  lastStep_.ok = false;
+  lastStep_.resting = true;
+  lastStep_.failure = kRestingFailure;
+  lastStep_.controlPoints = rod_.controlPointCount();
+  proxies_->rebuild(rod_);
+  OneWayContactLaw law;
+  law.friction = settings_.friction;
+  std::vector<OneWayContact> pushes;
+  std::vector<Contact> found;
+  for (const btCollisionObject* object : candidates) {
+    btRigidBody* body = dynamicBody(*object);
+    if (body == nullptr) continue;  // static and kinematic bodies do not move into a resting rope
+    if (!bodyStateFinite(*body)) {
+      ++lastStep_.skippedBodies;
+      continue;
+    }
+    btVector3 bodyMin, bodyMax;
+    body->getCollisionShape()->getAabb(body->getWorldTransform(), bodyMin, bodyMax);
+    pushes.clear();
+    const std::size_t firstRecord = contacts_.size();
+    for (int i = 0; i < proxies_->size(); ++i) {
+      const btBroadphaseProxy* proxy = proxies_->proxy(i).object->getBroadphaseHandle();
+      if (proxy != nullptr && !TestAabbAgainstAabb2(proxy->m_aabbMin, proxy->m_aabbMax, bodyMin, bodyMax)) continue;
+      found.clear();
+      try {
+        findContacts(proxies_->capsule(i), *body, settings_.speculativeMargin, found);
+      } catch (const InvalidArgument&) {
+        ++lastStep_.skippedBodies;  // a shape the narrowphase does not handle
+        break;
+      }
+      const CapsuleProxy& piece = proxies_->proxy(i);
+      for (const Contact& contact : found) {
+        OneWayContact push;
+        push.contact = contact;  // the rope does not move: ropeVelocity stays zero
+        pushes.push_back(push);
+        RopeContactRecord record;
+        record.rope = this;
+        record.body = body;
+        record.s = piece.s0 + static_cast<double>(contact.t) * (piece.s1 - piece.s0);
+        record.point = contact.pointOnBody;
+        record.normal = contact.normal;
+        record.depth = -static_cast<double>(contact.distance);
+        lastStep_.maxPenetration = std::max(lastStep_.maxPenetration, record.depth);
+        contacts_.push_back(record);
+      }
+    }
+    if (pushes.empty()) continue;
+    solveOneWayContacts(*body, pushes.data(), static_cast<int>(pushes.size()), h, law);
+    for (std::size_t k = 0; k < pushes.size(); ++k) {
+      RopeContactRecord& record = contacts_[firstRecord + k];
+      record.active = pushes[k].normalImpulse > 0.0;
+      record.force = -pushes[k].impulse() / static_cast<btScalar>(h);  // on the rope: the body got the impulse
+      if (record.active) ++lastStep_.contacts;
+    }
+  }
+  lastStep_.proxyOverflows = proxies_->updateBoxes(rod_, h, settings_.speculativeMargin);
 }
 
 }  // namespace rope::bullet

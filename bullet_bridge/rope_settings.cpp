@@ -36,8 +36,8 @@ void BulletRopeSettings::validate() const {
   requireNonNegative("settings.speculativeDamping", speculativeDamping);
   requireNonNegative("settings.friction", friction);
   requirePositive("settings.frictionVelocity", frictionVelocity);
-  if (capsulesPerSpan < 1 || capsulesPerSpan > 64) {
-    throw InvalidArgument("settings.capsulesPerSpan", std::to_string(capsulesPerSpan), "must be in [1, 64]");
+  if (capsulesPerSpan < 1 || capsulesPerSpan > 16) {
+    throw InvalidArgument("settings.capsulesPerSpan", std::to_string(capsulesPerSpan), "must be in [1, 16]");
   }
   requireNonNegative("settings.speculativeMargin", speculativeMargin);
   requirePositive("settings.initialPredictionTime", initialPredictionTime);

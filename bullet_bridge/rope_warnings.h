@@ -16,7 +16,9 @@ struct RopeWarnings {
   long skippedBodies = 0;        // candidate or attached bodies passed over: non-finite state, unsupported shape
   long droppedAttachments = 0;   // body attachments dropped because their body left the Bullet world
   int consecutiveFailures = 0;   // failed substeps since the last successful one (0: the last one succeeded)
-  long total() const { return failedSteps + skippedBodies + droppedAttachments; }
+  long timesPutToRest = 0;       // times the rope was put to rest (RopeObject::kFailuresBeforeRest failures in a row)
+  long restingSubsteps = 0;      // substeps spent at rest (frozen, still colliding; not counted in failedSteps)
+  long total() const { return failedSteps + skippedBodies + droppedAttachments + timesPutToRest; }
 };
 
 // A RopeWorld as a whole (RopeWorld::warnings()).

@@ -148,13 +148,19 @@ void RopeWorld::substep(double h) {
         rope.rod().setGravity(gravity);
       }
     }
-    guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+    if (rope.resting()) {
+      guardedCall([&] { rope.restSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+    } else {
+      guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+    }
   }
 
   solveRopeContacts(h);
 
   for (RopeObject* rope : ropes_) {
-    guardedCall([&] { rope->endSubstep(h); }, [&](const char* message) { rope->failSubstep(message); });
+    if (!rope->resting()) {
+      guardedCall([&] { rope->endSubstep(h); }, [&](const char* message) { rope->failSubstep(message); });
+    }
     rope->countSubstep();
     report_.contacts.insert(report_.contacts.end(), rope->contacts().begin(), rope->contacts().end());
     report_.ropes.push_back(rope->lastStep());

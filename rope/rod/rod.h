@@ -16,9 +16,10 @@
 // (included angle < insertAngle), removal where it is straight (> removeAngle) and the removal error
 // is within removalErrorBound; counts stay within [minControlPoints, maxControlPoints].
 //
-// Failure: bad input throws InvalidArgument and changes nothing. A step whose factorisation fails or
-// whose result is not finite reports ok == false and leaves the rod exactly as it was (loads queued for
-// that step are dropped). Deterministic: the same calls give bitwise identical results.
+// Failure: bad input throws InvalidArgument and changes nothing. A step whose factorisation fails,
+// whose result is not finite, or that makes the rope longer than kMaxStepStretch times its rest
+// length (a linearised step far outside its range, e.g. h = 1 s on a hanging rope) reports
+// ok == false and leaves the rod exactly as it was (loads queued for that step are dropped). Deterministic: the same calls give bitwise identical results.
 //
 // Hooks for a physics bridge (all "next step only", cleared by step() whether it succeeds or not):
 //   addForce(s, f)    point force f (N) at C(s), explicit.
@@ -178,6 +179,15 @@ class Rod {
                         const Eigen::Matrix3d& damping);
   void clearLoads();
 
+  // A step that makes the rope as a whole longer than this many times its rest length (and longer
+  // than before the step) fails instead of being committed: a mean strain of 200 % is far past the
+  // breaking strain of real ropes (nylon ~25 %, steel ~2 %) and is the linearised step's
+  // extrapolation rather than mechanics (measured: h = 1 s on a rope hanging from one end gave 3.75
+  // times the rest length). Not lower: a slack rope without bending stiffness flailing between
+  // close pins reaches 2.7 times in one of the adaptivity tests, and a rope pulled round a capstan
+  // at 1.1 e^(2 pi) over 2 times.
+  static constexpr double kMaxStepStretch = 3.0;
+
   // One step of h seconds (finite, > 0, else InvalidArgument "h"): solveTrial(h), then commitTrial()
   // if the trial succeeded, else the loads are dropped and the rod is unchanged.
   StepReport step(double h);
@@ -212,7 +222,8 @@ class Rod {
   // ---- explicit refinement and cutting ----
   // Exact insertion ([A] §3.1): positions and velocities along the curve do not change. Explicit edits
   // are not bound by min/maxControlPoints (those limit adaptivity). Throws InvalidArgument("s", ...)
-  // for s outside the open range, at full multiplicity, or (a new knot value) closer than
+  // for s outside the open range, at a knot of multiplicity degree (one more would disconnect the
+  // curve: cut() makes two ropes), or (a new knot value) closer than
   // settings.minKnotSpacing of rest length to a neighbouring knot: so short a span makes every
   // later step fail.
   void insertKnot(double s);
@@ -301,6 +312,8 @@ class Rod {
   void requireResolvableKnot(double s) const;
   double restDistance(double a, double b) const;  // rest arc length between two parameters, m
   bool assembleAndSolve(double h, StepReport& report);
+  // Whether `next` (end-of-step control points) breaks kMaxStepStretch (rod.cpp).
+  bool overstretchedBy(const PointList& next) const;
   void adapt(StepReport& report);
   void insertKnotUnchecked(double s);
   // Applies a planned removal to knots, points, velocities, rest state and integrals together.

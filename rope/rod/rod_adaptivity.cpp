@@ -26,6 +26,14 @@ void Rod::insertKnotUnchecked(double s) {
 
 void Rod::insertKnot(double s) {
   validateParameter(s);
+  // Found by fuzzing: an interior knot of multiplicity degree + 1 disconnects the curve, leaving one
+  // rod of two pieces that no longer meet (evaluation at s then belongs to one of them); cut() is
+  // the way to make two ropes.
+  if (knots_.multiplicity(s) >= degree() && s > beginParameter() && s < endParameter()) {
+    throw InvalidArgument("s", formatValue(s),
+                          "already has multiplicity degree = " + std::to_string(degree()) +
+                              ": one more would split the rope in two (use cut)");
+  }
   requireResolvableKnot(s);
   insertKnotUnchecked(s);  // planKnotInsertion validates the rest (strictly inside, multiplicity)
 }

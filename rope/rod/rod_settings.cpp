@@ -81,6 +81,11 @@ void RodSettings::validate() const {
   }
   requireCount("settings.minControlPoints", minControlPoints, degree + 1);
   requireCount("settings.maxControlPoints", maxControlPoints, minControlPoints);
+  if (maxControlPoints > kMaxControlPointsLimit) {
+    // Found by fuzzing: 2^30 was accepted and fromSegment then asked for 8 GB of knots.
+    throw InvalidArgument("settings.maxControlPoints", std::to_string(maxControlPoints),
+                          "must be <= " + std::to_string(kMaxControlPointsLimit));
+  }
   requireCount("settings.initialControlPoints", initialControlPoints, minControlPoints);
   if (initialControlPoints > maxControlPoints) {
     throw InvalidArgument("settings.initialControlPoints", std::to_string(initialControlPoints),

@@ -54,7 +54,10 @@ struct RodSettings {
   // ---- adaptivity ([A] §4; docs/method.md §10) ----
   bool adaptive = true;            // false: the knot vector only changes on explicit request
   int minControlPoints = 4;        // >= degree + 1
-  int maxControlPoints = 128;      // >= minControlPoints
+  int maxControlPoints = 128;      // in [minControlPoints, kMaxControlPointsLimit]
+  // Largest allowed maxControlPoints: 2^16 points is a 65 m rope at 1 mm spacing, tens of MB of step
+  // matrix; far beyond it a count only allocates (2^30 asked for 8 GB) without a usable step time.
+  static constexpr int kMaxControlPointsLimit = 1 << 16;
   // Included angle theta_i of the control polygon at q_i (pi = straight), [B]'s thresholds; the
   // bend measure of [A] eq. 13 is c_i = (1 + cos theta_i) / 2. Insert below insertAngle, remove above
   // removeAngle: 0 < insertAngle < removeAngle < pi gives the hysteresis that stops flicker.

@@ -16,8 +16,22 @@ class ActionWorld::World : public btDiscreteDynamicsWorld {
   int actionCount() const { return m_actions.size(); }
 };
 
+namespace {
+
+// Small pools: Bullet's defaults (4096 manifolds and collision algorithms) allocate and clear
+// megabytes per world, which dominated the fuzzers' short scenes; an exhausted pool falls back to
+// the heap, so only the allocation pattern differs.
+btDefaultCollisionConstructionInfo smallPools() {
+  btDefaultCollisionConstructionInfo info;
+  info.m_defaultMaxPersistentManifoldPoolSize = 64;
+  info.m_defaultMaxCollisionAlgorithmPoolSize = 64;
+  return info;
+}
+
+}  // namespace
+
 ActionWorld::ActionWorld(const btVector3& gravity)
-    : configuration_(std::make_unique<btDefaultCollisionConfiguration>()),
+    : configuration_(std::make_unique<btDefaultCollisionConfiguration>(smallPools())),
       dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
       solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),

@@ -6,13 +6,20 @@
 //   - a substep with h < 0, NaN or infinite (was: InvalidArgument("h") from the action);
 //   - an exception from the narrowphase (a user's concave shape throwing; the contact path caught
 //     only InvalidArgument) of a dynamic or a kinematic rope, from the substep callback, and from a
-//     kinematic rope's followPath.
+//     kinematic rope's followPath;
+//   - a step that is finite but garbage: rod.step(1.0) on a rope hanging from one end, released
+//     horizontal (was: ok at 3.75 times the rest length) fails by Rod::kMaxStepStretch and keeps the rod;
+//   - a rope that keeps failing (a pin target 100 m away: every step would overstretch it) is put to
+//     rest after RopeObject::kFailuresBeforeRest failures, frozen and still colliding: a box dropped
+//     on it stays on top, and wake() lets it step again.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "bullet_bridge/kinematic_rope.h"
 #include "bullet_bridge/rope_world.h"
@@ -296,6 +303,70 @@ TEST(StepFailure, KinematicRopePassesThroughNaNBody) {
   EXPECT_TRUE(hose.lastStep().contacts.empty());
   EXPECT_TRUE(std::isfinite(box->getAngularVelocity().length()));
   hose.removeFromWorld();
+}
+
+TEST(StepFailure, OneSecondStepOfAHangingRopeIsDetectedAsGarbage) {
+  // Released horizontal, hanging from its pinned end: in one linearised step of 1 s the rope swings
+  // along its tangents, which stretches it (3.75 times its rest length before the check).
+  Rod rod = Rod::fromSegment(RodSettings{}, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  rod.pin(rod.beginParameter());
+  const std::vector<double> before = rodState(rod);
+  StepReport report;
+  {
+    test::ScopedNoFloatingPointTraps hugeStepOnPurpose;
+    report = rod.step(1.0);
+  }
+  EXPECT_FALSE(report.ok);
+  EXPECT_NE(std::string(report.failure).find("kMaxStepStretch"), std::string::npos) << report.failure;
+  EXPECT_TRUE(sameBits(rodState(rod), before));
+  // The same rope at an ordinary step is fine.
+  EXPECT_TRUE(rod.step(kStep).ok);
+}
+
+TEST(StepFailure, RopeThatKeepsFailingIsPutToRestAndStillCollides) {
+  ActionWorld world;
+  world.addBox(btVector3(2, 0.05, 2), 0.0, btVector3(0, -0.05, 0));  // ground, top at y = 0
+  const double r = RodSettings{}.radius;
+  RopeObject rope(Rod::fromSegment(RodSettings{}, Vec3(-0.5, r, 0), Vec3(0.5, r, 0)));
+  RopeWorld ropes(world.world());
+  ropes.addRope(rope);
+  // An impossible constraint: the end pinned to a target 100 m away. Every step would stretch the
+  // first control-polygon leg a hundredfold and fails (Rod::kMaxStepStretch); the rope keeps its state.
+  const int pin = rope.attachToPoint(rope.rod().beginParameter(), btVector3(-0.5, btScalar(r), 0));
+  rope.setAttachmentTarget(pin, btVector3(-100, btScalar(r), 0));
+  world.step(RopeObject::kFailuresBeforeRest - 1);
+  EXPECT_FALSE(rope.resting());
+  EXPECT_EQ(rope.warnings().consecutiveFailures, RopeObject::kFailuresBeforeRest - 1);
+  world.step(1);
+  ASSERT_TRUE(rope.resting());
+  EXPECT_TRUE(rope.lastStep().resting);
+  EXPECT_STREQ(rope.lastStep().failure, RopeObject::kRestingFailure);
+  EXPECT_EQ(rope.warnings().timesPutToRest, 1);
+  EXPECT_EQ(rope.warnings().failedSteps, RopeObject::kFailuresBeforeRest);
+  for (const Vec3& v : rope.rod().velocities()) EXPECT_EQ(v.norm(), 0.0);
+
+  // Frozen, still colliding: a 1 kg box dropped across the rope's middle comes to rest on it (on the
+  // ground it would sit 2 r lower), and the rope does not move.
+  const std::vector<double> frozen = rodState(rope.rod());
+  btRigidBody* box = world.addBox(btVector3(0.05, 0.05, 0.05), 1.0, btVector3(0, btScalar(0.15), 0));
+  world.step(480);
+  const double bottom = static_cast<double>(box->getCenterOfMassPosition().y()) - 0.05;
+  EXPECT_GT(bottom, 2 * r - 1e-3) << "the box fell through the resting rope";
+  EXPECT_LT(std::abs(static_cast<double>(box->getLinearVelocity().y())), 0.05);
+  EXPECT_GT(rope.lastStep().contacts, 0);
+  EXPECT_TRUE(sameBits(rodState(rope.rod()), frozen));
+  EXPECT_EQ(rope.warnings().restingSubsteps, 480);
+  EXPECT_EQ(rope.warnings().failedSteps, RopeObject::kFailuresBeforeRest);  // resting substeps are not failures
+  std::printf("resting rope under a 1 kg box: box bottom %.4g m above the ground (rope top %.4g m), %d contacts\n",
+              bottom, 2 * r, rope.lastStep().contacts);
+
+  // Woken with the impossible pin gone, it steps again (and the box on it moves it).
+  rope.removeAttachment(pin);
+  rope.wake();
+  world.step(1);
+  EXPECT_FALSE(rope.resting());
+  EXPECT_TRUE(rope.lastStep().ok) << rope.lastStep().failure;
+  EXPECT_FALSE(rope.lastStep().resting);
 }
 
 }  // namespace

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/attachment.h"
 
 #include <Eigen/Geometry>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Attachments of a rope point C(s) to the world.
 //  * to a rigid body's local point (two-way): a stiff implicit spring-damper on the rope's side

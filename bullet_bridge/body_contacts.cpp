@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/body_contacts.h"
 
 #include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>

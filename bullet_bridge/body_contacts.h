@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Rope-body contact of one rope in one substep, as a line load (line_contact.h) with sticking
 // friction (contact_response.h: sampleSpring; friction_anchors.h):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Whether a Bullet body's state is usable by the ropes this substep. A user's body can end up with a
 // NaN velocity or transform (an explosion elsewhere in the scene, a bad setLinearVelocity); a rope

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Conversions between Bullet's vectors (btScalar: float or double, per the Bullet build) and the
 // rope's Eigen vectors (double), and finiteness checks of Bullet values. Internal: one definition for

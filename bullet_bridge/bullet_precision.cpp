@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/bullet_precision.h"
 
 // The one definition: only the precision this library was compiled with exists at link time.

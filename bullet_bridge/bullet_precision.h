@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Precision guard. Debian ships one set of Bullet headers for a float and a double build; only
 // BT_USE_DOUBLE_PRECISION selects the btScalar layout. Code compiled with the other setting than

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A rope capsule: the segment from `a` to `b` swept by a ball of radius `radius`, in the world frame.
 // SI units (metres). The axis may be degenerate (a == b): the capsule is then a sphere.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The rope's collision proxy in Bullet's broadphase: capsules of the rope's radius over equal
 // parameter pieces of every knot span (capsulesPerSpan per span, rebuilt after knot insertions and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/concave_contact.h"
 
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One contact between a rope capsule and a Bullet collision object, in the world frame (metres).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What the ropes of a world did in one Bullet substep, for users' own checks (e.g. CI tests that a
 // rope never sinks into a body): every contact with its force and friction state, and per rope the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Penalty contact with damping and Coulomb friction, linearised for the rope's implicit step
 // (Rod::addSpring) and closed by Newton's third law.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Capsule vs a convex Bullet shape (convex_support.h).
 //

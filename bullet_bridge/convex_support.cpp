@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/convex_support.h"
 
 #include <BulletCollision/CollisionShapes/btBoxShape.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A supported convex Bullet shape, described as a convex *core* swept by a ball of radius
 // `rounding`, in the shape's local frame. Splitting the rounding off keeps distance queries exact

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/distributed_loads.h"
 
 #include <Eigen/Core>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Loads spread along a stretch of rope, turned into the rod's consistent generalised forces by
 // Gauss–Legendre quadrature over the knot spans: a load q(s) per metre of rope gives control point i

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Narrowphase entry point: contacts between a rope capsule and one Bullet collision object.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/friction_anchors.h"
 #include "bullet_bridge/bullet_math.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The stick state of rope-body friction, carried from one substep to the next along the curve.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // How the friction coefficient of a contact is made from the two surfaces', the Bullet way.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Nothing may leave a Bullet step (rope_warnings.h): code that runs inside stepSimulation calls
 // rope code and user callbacks through guardedCall, which turns any exception into a call of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/kinematic_push.h"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One-way contact of a kinematic rope on a dynamic body: the rope is moved by its driver and is never
 // pushed back, so the contacts are resolved on the body alone, as against an infinitely heavy pusher.

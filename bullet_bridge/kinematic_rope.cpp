@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/kinematic_rope.h"
 
 #include <BulletCollision/BroadphaseCollision/btBroadphaseInterface.h>

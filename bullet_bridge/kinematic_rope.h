@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A kinematic tractrix rope in a Bullet world ([B]'s "follow the leader": cables dragged by robots,
 // hoses, tails): a rope::TractrixRope whose leading end follows a rigid body's point, a fixed target

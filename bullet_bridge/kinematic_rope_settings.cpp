@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/kinematic_rope_settings.h"
 
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a user configures for a kinematic (tractrix) rope in a Bullet world (kinematic_rope.h): its
 // collision geometry, how it pushes dynamic bodies, and its broadphase filter. SI units. The rope's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/line_contact.h"
 
 #include "bullet_bridge/bullet_math.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where a rope touches a body along one capsule piece, and the quadrature samples that integrate the
 // contact pressure over that stretch of the curve (docs/method.md §11, eq. 30).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Debug drawing of ropes through Bullet's btIDebugDraw (called by RopeWorld's action from
 // btDiscreteDynamicsWorld::debugDrawWorld, or directly): the spline curve as a polyline, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A rope as a Bullet world object: owns a rope::Rod, its capsule proxies (capsule_proxies.h), its
 // attachments (attachment.h) and the contacts of its last substep. The user owns it; a RopeWorld

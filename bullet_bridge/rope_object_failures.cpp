@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // RopeObject: attachments that would break the rope are refused; what a RopeWorld does when a rope's
 // substep cannot run or goes wrong (rope_warnings.h; nothing there throws, it runs inside Bullet's
 // stepSimulation).

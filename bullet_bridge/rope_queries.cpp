@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/rope_queries.h"
 
 #include <BulletCollision/BroadphaseCollision/btBroadphaseInterface.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // World queries that see ropes: Bullet's broadphase finds the rope capsules a ray or an object's box
 // touches (the capsules are ordinary broadphase proxies), then the exact capsule geometry answers,

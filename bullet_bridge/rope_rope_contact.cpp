@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/rope_rope_contact.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Contact between ropes and of a rope with itself ([A] §5.2 knot tying needs the rope to stay out of
 // itself). Candidates are the pairs of rope capsules that Bullet's broadphase reports (RopeWorld

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a user configures for a rope living in a Bullet world: the contact laws (rope-body: a penalty
 // line load with damping and Coulomb friction with sticking; rope-rope: penalty point contacts), the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Warning counters of the ropes in a Bullet world. Code that runs inside btDiscreteDynamicsWorld::
 // stepSimulation never throws through the user's loop: whatever goes wrong in a rope's substep (a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Ropes in a user's Bullet world. A RopeWorld wraps one btDiscreteDynamicsWorld (or a subclass such
 // as btSoftRigidDynamicsWorld) and installs one btActionInterface in it, so every rope steps once per

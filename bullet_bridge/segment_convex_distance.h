@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Exact distance between a segment and a convex core (convex_support.h) by GJK on their Minkowski
 // difference, with our own simplex solver (libccd 2.x has no distance query). For polytope cores

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Closest points of two segments: the narrowphase of rope-rope contact (two capsules touch where
 // their axes come closer than the sum of their radii). Exact (clamped closed form); for parallel

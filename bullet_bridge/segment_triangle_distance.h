@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Exact closest points between primitives in 3-D: point–triangle, segment–segment and
 // segment–triangle. Degenerate input (zero-length segments, collinear triangle vertices) is handled

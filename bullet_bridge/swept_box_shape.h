@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The collision shape of a rope capsule's broadphase object (capsule_proxies.h, kinematic_rope.h): an
 // axis-aligned box of settable half extents around the object's origin, whose shape type stays

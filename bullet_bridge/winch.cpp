@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // RopeObject's winches (winch.h; docs/method.md §16).
 #include <algorithm>
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A winch at one end of a rope (RopeObject::setWinchSpeed / winchTo / payOut): every substep, before
 // the rope's step, it pays out (speed > 0) or reels in (speed < 0) speed * h metres of rest length at

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Is a body still in the Bullet world? Bullet has no removal callback, and users remove a body and
 // delete it between two steps, so a pointer a rope kept (an attachment, a followed body) may point to

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Which headers each library installs, in three classes (paths relative to the source root, which is
 # also the include root: an installed header keeps its path under include/SplineRope/).
 #

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Axis-aligned bounding box in world coordinates (metres). A default box is empty and absorbs
 // whatever is added to it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Pinhole camera: look-at placement and a perspective projection (OpenGL clip conventions, right
 // handed, looking down -Z in view space). Lengths in metres, angles in degrees.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Colours are sRGB-encoded RGB triples in [0, 1] (what a colour picker shows); the renderer converts
 // them to linear light for shading and back for the output image.

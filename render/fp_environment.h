@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Mesa's llvmpipe computes with NaN and infinity on purpose (clipping, derivatives, culling). A
 // program that traps floating-point exceptions (as SplineRope's tests do) would die inside Mesa, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Turns a frame read back from OpenGL (RGBA8, rows bottom-up) into an Image (RGB8, rows top-down),
 // optionally anti-aliasing it on the way. The anti-aliasing is edge-directed post-filtering in the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // An offscreen OpenGL context through OSMesa (Mesa's llvmpipe, no display needed), OpenGL 3.3 core
 // profile or newer. RAII: the context is destroyed with the object. GL stays out of this header.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // An 8-bit RGB image, rows stored top to bottom (as PNG and video expect; OpenGL reads rows bottom
 // up, which the renderer flips).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Plain triangle-mesh data: what scene extraction produces and the renderer uploads. Single
 // precision because that is what the GPU consumes; positions in metres in the mesh's local frame.

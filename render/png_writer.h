@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // PNG files through libpng (8-bit RGB, no interlacing).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/polyline_mesh.h"
 
 #include <string>

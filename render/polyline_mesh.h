@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A polyline drawn as thin open cylinders between its points with a small ball at every point: the
 // control-polygon overlay. Real geometry rather than GL lines because core-profile lines are one

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Closed triangle meshes of the primitive solids, centred on the origin with their axis along +Y
 // (Bullet's default up axis). Lengths in metres. Curved surfaces carry smooth normals, flat faces

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Offscreen renderer for an extracted Scene: soft key light with a shadow map, hemisphere ambient,
 // a ground grid, sky gradient with distance haze, and multisample anti-aliasing, read back into an

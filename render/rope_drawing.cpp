@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/rope_drawing.h"
 
 namespace rope::render {

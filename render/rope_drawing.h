@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Adds a rope, given as plain spline data, to a scene: the swept tube and optionally its control
 // polygon as an overlay (so the knot vector's adaptivity is visible, with alternating span colours).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/scene.h"
 
 #include "rope/common/error.h"

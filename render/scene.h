@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The extracted draw list: everything the renderer needs for one frame, as plain data with no GL
 // and no Bullet. Meshes are shared and immutable once added; the renderer keeps their GPU copies

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Triangle meshes of Bullet collision shapes, in the shape's local frame with its local scaling
 // applied: box, sphere, capsule, cylinder and cone (any up axis), convex hulls and every other

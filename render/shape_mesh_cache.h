@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Meshes of Bullet shapes built once and reused frame after frame. Entries are keyed by the shape's
 // address and checked against a fingerprint (type, local scaling, margin, local bounds), so a shape

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A rope drawn as a smooth tube swept along its B-spline: rings of vertices sampled per knot span,
 // oriented by parallel-transport frames (rotation-minimising, so the tube does not twist where the

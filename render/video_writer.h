@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // H.264 MP4 video through an ffmpeg child process fed raw RGB frames on a pipe. Encoded as yuv420p
 // (what players accept; ffmpeg would otherwise pick 4:4:4 for RGB input), which needs even sizes.

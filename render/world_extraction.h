@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Scene extraction from Bullet: one draw item per collision object, meshed from its collision shape
 // and placed by its world transform. Works without a GL context, so it is unit-testable.

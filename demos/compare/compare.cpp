@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/compare/compare.h"
 
 #include <exception>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // rope_compare: the same physical scenes run with SplineRope, Bullet's btSoftBody rope
 // (btSoftBodyHelpers::CreateRope) and a MuJoCo 2.2 rope (<composite type="rope">: a chain of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // MuJoCo 2.2 side: <composite type="rope"> — a chain of capsule bodies joined by two hinges each
 // (MuJoCo 2.2.2 has no `cable` plugin), built as an XML string and loaded from a virtual file.
 // What matches and what cannot: length, mass (per link), radius, gravity and time step match; the

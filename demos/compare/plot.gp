@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Accuracy against cost from rope_compare's PREFIX.dat (see rope_compare.cpp writePlotData).
 # gnuplot -e "data='results.dat'; out='accuracy_vs_cost.png'" demos/compare/plot.gp
 if (!exists("data")) data = 'demos/compare/results.dat'

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // rope_compare [--quick] [--out PREFIX] [--repeats N]
 // rope_compare --try ENGINE SCENE RESOLUTION ITERATIONS SUBSTEPS STRETCH(0/1) SECONDS
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One runner per engine; rope::compare::run() dispatches to them. Each runs one scene with one
 // setting and times only the engine's step calls (measurements are taken outside the timer).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The physical scenes every engine runs, taken from SplineRope's own scene builders (so the
 // SplineRope side is exactly the demo scene) plus the quantities the peers need to match them.

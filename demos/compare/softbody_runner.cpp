@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bullet soft-body side: btSoftBodyHelpers::CreateRope in a btSoftRigidDynamicsWorld. What matches
 // and what cannot: length, mass (lumped at the nodes), gravity, time step and collision radius (the
 // soft body's margin) match; the links are position-based constraints whose stiffness kLST in (0, 1]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SplineRope side: the demo scenes themselves (crane, drape, thin bar) and, for the catenary and the
 // scaling scene, HangScene's rod and pin schedule driven through the public Rod API — HangScene::step()
 // also samples the sag at 400 points every step, which would more than double the timed cost of a

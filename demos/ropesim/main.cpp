@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ropesim: run, render and measure a SplineRope scene from the command line (see --help).
 #include <cstdio>
 #include <exception>

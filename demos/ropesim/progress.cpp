@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/ropesim/progress.h"
 
 #include <unistd.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Progress output for long runs: a redrawn bar with an ETA on a terminal, and a quiet line every
 // 10% elsewhere (CI logs), on standard error so that standard output stays clean.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/ropesim/run_scene.h"
 
 #include <chrono>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The ropesim run loop, separate from main() so that tests can run it: simulate a scene for the
 // requested time, render frames at the requested rate into a video and/or PNG files, and measure.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a ropesim run measured, and its --stats JSON (one object; keys documented in README.md).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/arc_path.h"
 
 #include <algorithm>

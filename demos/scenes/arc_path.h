@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Planar leading-end paths for [B] §4's tractrix experiment ([B] does not give its path): a straight
 // run, two arcs, then straight on, parametrised by arc length. Shared by the experiment test and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/capstan_scene.h"
 
 #include <algorithm>

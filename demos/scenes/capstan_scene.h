@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "capstan": a rope wrapped over a fixed horizontal obstacle by an angle theta and loaded at its two
 // ends by a light and a heavy body, to check the capstan (Euler–Eytelwein) law: a perfectly flexible,

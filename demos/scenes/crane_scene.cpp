@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/crane_scene.h"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "crane": a heavy box (10 kg) hangs from a light rope (1 m, 0.01 kg/m): the rope's top is a moving
 // world target (a pin), its bottom is attached to the box's top face (two-way body attachment, mass

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/cut_scene.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "cut": cutting a loaded rope in a Bullet world ([A] §5.1). A 2 kg box hangs from a 1 m rope pinned
 // at the top and swings as a pendulum; at cutTime the rope is cut (RopeObject::cut) at cutFraction of

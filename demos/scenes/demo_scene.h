@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A demo scene: a small simulation that `ropesim` runs, renders and measures. Tests and benchmarks
 // build the very same scenes (one set of scene builders, as Box2D keeps its samples), so a demo

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/drape_scene.h"
 
 #include <algorithm>

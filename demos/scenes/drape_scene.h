@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "drape" / "thinbar": a rope falls onto a static obstacle in a Bullet world and comes to rest on it —
 // a wide box (drape) or a 2 mm square bar it must hang over without tunnelling (thinbar). Both sit

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/floor_pull_scene.h"
 
 #include <algorithm>

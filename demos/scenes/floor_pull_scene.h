@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "floorpull": flat Coulomb friction. A straight rope lies along x on a large static box (top face
 // y = 0) and is pulled along the floor by a distributed force F (N per rope) from t = 0, with friction

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/ground.h"
 
 #include <memory>

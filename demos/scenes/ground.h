@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The floor of the demo scenes: the plane y = height, drawn with the renderer's ground grid.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "hang": the catenary. A rope lies straight between two pins; the pins are drawn together to the
 // final span over closeTime, and the rope sags and settles into a catenary whose sag the analytic

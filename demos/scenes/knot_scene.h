@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "knot": knot tying ([A] §5.2) in a Bullet world. A rope is laid out as a loose overhand knot (a
 // trefoil cut open at one lobe, its two ends led out along -z and +z as tails) and held by two

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/physics_world.h"
 
 #include "bullet_bridge/capsule_proxies.h"

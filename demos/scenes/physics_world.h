@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A stock Bullet world for the rope scenes (and the tests and benchmarks that build them): default
 // collision configuration, dbvt broadphase, sequential-impulse solver and btDiscreteDynamicsWorld,

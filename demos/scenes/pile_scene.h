@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "pile": a long rope dropped onto the ground piles up into a heap. It starts as a loose vertical coil
 // (a helix whose turns are several diameters apart, tilted so that the turns land unevenly) above a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/resting_rope_scene.h"
 
 #include <algorithm>

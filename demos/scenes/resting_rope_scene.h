@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "rest": straight ropes lying at rest on a flat static surface, the commonest contact there is:
 // a btStaticPlaneShape, a btBoxShape or a btBvhTriangleMeshShape (a flat grid of 10 cm squares, each

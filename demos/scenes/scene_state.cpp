@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/scene_state.h"
 
 #include "bullet_bridge/capsule_proxies.h"

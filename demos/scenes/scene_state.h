@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A scene's full dynamic state as a flat list of numbers, for the golden determinism hash
 // (tests/reliability/golden_hash_test.cpp): any change that alters a trajectory changes some bit of

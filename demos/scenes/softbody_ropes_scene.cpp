@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/softbody_ropes_scene.h"
 
 #include <BulletSoftBody/btSoftBodyHelpers.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The peer of RestingRopeScene (surface kBox) in Bullet's own soft bodies: straight ropes made by
 // btSoftBodyHelpers::CreateRope (as demos/compare does), lying side by side on the same static box in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/sweep_scene.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "sweep": a kinematic tractrix rope ([B], bullet_bridge/kinematic_rope.h) dragged over the ground
 // through a field of light boxes: its leading end follows a circle at constant speed, the rest follows

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "tractrix": [B]'s follow-the-leader kinematics. Two ropes of the same length follow the same
 // figure-eight path with their leading ends, side by side: TRX (an exact polyline of 20 rigid

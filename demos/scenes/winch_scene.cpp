@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/winch_scene.h"
 
 #include <stdexcept>

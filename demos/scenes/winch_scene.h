@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "winch": a crane lowers a 10 kg box and lifts it back with a winch (winch.h). The rope's top end is
 // held at the winch point (a world point on the crane's jib, attachToPoint) and its bottom end is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/common/error.h"
 
 #include <cmath>

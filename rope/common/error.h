@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Errors raised by SplineRope. Bad user input throws InvalidArgument whose message names the
 // offending parameter and its value; the object it was called on is left exactly as it was.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Basic value types shared by the rope modules. Positions in metres, velocities in m/s.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Adaptivity criteria on the control polygon ([A] §4, [B] §3; docs/method.md §10). Pure functions; Rod::step()
 // applies them after each integration step (rod_adaptivity.cpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Symmetric block-banded matrix with its in-place banded Cholesky factorisation (docs/method.md §8:
 // eq. 22 is solved in O(n)). Blocks are b x b (b = 1 for the scalar mass matrix, b = 3 for

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Bending (beyond [A], which had stretching only):
 //   E_b = (1/2) int EI |C''(s)|^2 / l0'(s)^3 ds.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Implicit point couplings between rods (rope self-contact and rope-rope contact), solved exactly on
 // top of the rods' own implicit steps.

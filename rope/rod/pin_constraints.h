@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Point constraints on the curve (docs/method.md §9, eqs. 25–26; [A] §5.1 "6 constraints to fix the
 // two extremities"): a pin holds C(s*) = sum_i b_i(s*) q_i at a target. It is linear in q, so with the

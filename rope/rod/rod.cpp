@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/rod/rod.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rod: knot insertion and removal, explicit and adaptive ([A] §3.1, §4; docs/method.md §2–§3, §10).
 #include <algorithm>
 #include <cmath>

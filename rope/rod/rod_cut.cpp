@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rod: cutting ([A] §5.1; docs/method.md §4): raising the multiplicity of s to d+1 by exact insertion makes the
 // curve C^-1 there; no basis function spans s, so the two sides share no mass, energy or force term and
 // become two independent rods. Positions, velocities and the rest curve follow the same exact map, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rod: explicit edits the step can live with. A pin the spline has no freedom for, a knot span
 // shorter than the rope resolves, or a piece shorter than that, was accepted and then made every
 // later step fail (a dependent pin set, a singular step matrix); these refuse them at the call.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The rod's constant integrals (docs/method.md §5–§7, [A] eqs. 10–12 and §4.2), kept per knot span so that
 // storage is linear in n and a knot insertion or removal recomputes only the O(d) spans it touches.

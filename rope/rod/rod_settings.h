@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a user configures for a dynamic rod ([A] §3.2–4; docs/method.md §5–§10): material, discretisation and
 // adaptivity. SI units throughout. The rod copies the settings at creation; what a step changes

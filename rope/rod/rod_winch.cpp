@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rod: paying out and reeling in at an end (a winch; docs/method.md §16). The end knots move and the
 // end span's polynomial is re-expressed on them through its blossom (eq. 50), for positions,
 // velocities and the rest curve alike: every other span keeps its polynomial, so the remaining rope

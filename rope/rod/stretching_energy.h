@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Green–Lagrange stretching ([A] eqs. 11–12; docs/method.md §6, eqs. 13–17):
 //   E = (EA/8) int (gamma^2 - 1)^2 l0' ds,  gamma = |C'(s)| / l0'(s),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/spline/arc_length.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Arc length of a B-spline curve, integral of |C'(s)| ds, by Gauss–Legendre quadrature on each knot
 // span (the integrand is smooth inside a span, so the rule converges fast there). Metres.

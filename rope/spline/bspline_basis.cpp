@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/spline/bspline_basis.h"
 
 #include <string>

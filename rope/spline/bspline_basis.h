@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // B-spline basis functions by the Cox–de Boor recursion ([A] §3.1; Piegl & Tiller A2.2/A2.3).
 // On span k only the d+1 functions b_{k-d}, ..., b_k are non-zero (locality), so every evaluation

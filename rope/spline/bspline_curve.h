@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A B-spline curve C(s) = sum_i q_i b_{i,d}(s) in R^3 (docs/method.md §1, eq. 1). Metres.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/spline/control_polygon.h"
 
 #include <algorithm>

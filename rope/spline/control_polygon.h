@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Measures on the control polygon used by adaptivity ([A] eq. 13, [B] §3; docs/method.md §10).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Global interpolation of a polyline by a clamped B-spline (Piegl & Tiller A9.1), used to lay a rope
 // along a path ([B] step 1). Parameters are assigned by chord length (or centripetal) and scaled to

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Splitting a curve in two ([A] §5.1; docs/method.md §4): raising the multiplicity of s to d+1 by exact knot
 // insertion makes the curve C^-1 there, so no basis function spans s any more. The two sides then

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Gauss–Legendre quadrature rules on [-1, 1]. An n-point rule integrates polynomials of degree
 // 2n-1 exactly; the rod's integrals (docs/method.md §7) pick n from the polynomial degree of their integrand.

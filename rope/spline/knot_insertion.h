@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Boehm's single-knot insertion ([A] §3.1 eqs. 2–6; docs/method.md §2). Inserting s* into span k
 // (s_k <= s* < s_{k+1}) replaces q_{k-d+1..k} by

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/spline/knot_removal.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Removal of one knot occurrence ([A] eq. 7; Tiller 1992; [B] §3.2 eq. 24 and Fig. 8).
 //

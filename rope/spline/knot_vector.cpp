@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/spline/knot_vector.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Knot vector of a B-spline ([A] §3.1; docs/method.md §1): s_0 <= s_1 <= ... <= s_{n+d} for n control points of
 // degree d. The curve is defined on the valid range [s_d, s_n]. Clamped (open) vectors repeat the end

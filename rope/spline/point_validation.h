@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Finiteness checks for control points and polyline points, shared by the spline module. They run
 // before any arithmetic on the points: a NaN would otherwise raise the trapped "invalid" exception

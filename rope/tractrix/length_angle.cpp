@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/tractrix/length_angle.h"
 
 #include <cmath>

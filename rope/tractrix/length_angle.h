@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // How much shorter a B-spline piece gets as the control polygon bends ([B] §2.2–2.3; docs/method.md §14), and
 // the inverse: which angle thresholds keep that shortfall within a tolerance ([B] §3.1–3.2).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Not API: installed only because rope/tractrix/tractrix_rope.h holds its workspace (the setting is
 // TractrixSettings::lengthCorrection).

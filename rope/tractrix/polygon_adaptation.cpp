@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/tractrix/polygon_adaptation.h"
 
 #include <algorithm>

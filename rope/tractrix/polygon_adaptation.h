@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Angle-threshold adaptation of a B-spline control polygon ([B] §3.1–3.3; docs/method.md §13): subdivision
 // (knot insertion) cuts corners whose included angle is below a threshold, which leaves the curve

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The tractrix chain pass ([B] §2.1; docs/method.md §13): the leading point of a chain of rigid segments moves
 // to a target; each segment's trailing point follows by the closed-form tractrix

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/tractrix/tractrix_rope.h"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A kinematic rope driven by its leading end ([B] §3.3): the tractrix chain pass moves the control
 // polygon (or, for TRX, the polyline itself), then the polygon is adapted by angle thresholds ([B]),

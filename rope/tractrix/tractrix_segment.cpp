@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/tractrix/tractrix_segment.h"
 
 #include <cmath>

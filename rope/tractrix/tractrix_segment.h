@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Closed-form tractrix motion of one rigid segment ([B] §2.1 eq. 1; docs/method.md §13, eqs. 38–40).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a user configures for a tractrix rope ([B] §3.3–4). Plain data; validateTractrixSettings()
 // checks it. Angles are radians in the struct; use degrees() / setThresholdsDegrees() to work in

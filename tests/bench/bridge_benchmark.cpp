@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cost of ropes in a Bullet world (bullet_bridge/rope_world.h), per stepSimulation of one 1/240 s
 // substep: one 64-control-point rope draped over a field of 100 static boxes, and N ropes resting on
 // a ground plane (N = 1, 10, 100) to show how the cost grows. Counters split each step into Bullet's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cost of rope contact (issue 13), per 1/240 s stepSimulation, with the library's DEFAULT RodSettings
 // and BulletRopeSettings and no cap on resolution (maxControlPoints is the default's):
 //   * N = 1, 10, 100 straight ropes (1 m, 16 initial control points, 5 mm radius) resting side by side

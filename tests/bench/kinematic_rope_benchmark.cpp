@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cost of a kinematic tractrix rope in a Bullet world (bullet_bridge/kinematic_rope.h), per
 // stepSimulation of one 1/240 s substep: a 2 m rope whose leading end circles at 1 m/s (radius 0.8 m)
 // through a field of 100 free boxes (5 cm, 0.2 m apart, no gravity, damped so that the field stays

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cost of one rope-capsule narrowphase query (bullet_bridge/find_contacts.h) per shape, in three
 // situations: penetrating (axis outside the body, GJK), speculative (gap inside the margin, GJK),
 // separated (gap beyond the margin, GJK early exit), plus the deep case (axis inside the body,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Frame time of the offscreen renderer at 1280x720 with shadows and anti-aliasing, read-back
 // included, plus the pieces a rope demo pays per frame (tube sweep, video encoding). Frames are
 // timed one per repetition so that the reported median is a frame-time median; wall-clock time,

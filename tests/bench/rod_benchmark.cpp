@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One rod step (stretching + bending + gravity + two pins + the adaptivity check) for n control points.
 // The counts are pinned (min = max = n) so that every iteration times the same n; the adaptivity
 // criteria are still evaluated each step.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Speed of the B-spline core's hot paths (cubic, n = 16 and n = 4096 control points):
 // point evaluation of C, C', C''; the O(d) insertion plan; full insertion into a curve, whose
 // std::vector storage shifts O(n) elements per insertion.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tractrix kinematics: [B] §4's whole 52-step planar experiment per variant, and one chain pass
 // per segment for chains of 20 .. 10,000 segments (docs/method.md §13: O(n)).
 #include <benchmark/benchmark.h>

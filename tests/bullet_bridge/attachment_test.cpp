@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Attachments (bullet_bridge/attachment.h, RopeObject::attachTo*): the crane (a 10 kg box on a
 // 0.01 kg/m rope, mass ratio 1000:1), lifting by the top pin, removal at run time, and Newton's third
 // law through a body attachment.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # cmake -P script: compiles and links bullet_precision_program.cpp twice against the bullet_bridge
 # library, once with the library's Bullet precision (must link) and once with the other (must fail
 # with an undefined reference to the precision symbol).

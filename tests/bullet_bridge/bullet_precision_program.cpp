@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Links only if it was compiled with the Bullet precision of the bullet_bridge library it is linked
 // against (see bullet_bridge/bullet_precision.h).
 #include "bullet_bridge/capsule.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Capsule proxies (bullet_bridge/capsule_proxies.h): the capsule set follows the knot vector, the
 // swept boxes cover the capsule now and at the predicted end of the step, and boxes Bullet would drop
 // as too large are detected and reported instead.

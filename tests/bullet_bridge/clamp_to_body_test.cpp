@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A rope clamped to a body (RopeObject::clampToBody, attachment.h): a cantilever clamped to a static
 // body against the elastica, a box hanging on a clamp that holds its angle with the body taking the
 // force and the moment (mass ratios up to 1000:1), removal at run time, bad input; and the tension

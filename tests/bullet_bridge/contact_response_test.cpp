@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Contact response (bullet_bridge/contact_response.h): the linearised penalty/friction law against
 // its formulas, and the friction ramp scenario (stays for mu > tan(angle), slides at
 // g (sin - mu cos) for mu < tan(angle)).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Distributed loads on a rope in a Bullet world (bullet_bridge/distributed_loads.h): a force per
 // metre integrated consistently, and aerodynamic drag against analytic terminal velocities.
 #include "bullet_bridge/distributed_loads.h"

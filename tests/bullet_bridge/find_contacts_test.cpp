@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/find_contacts.h"
 
 #include <btBulletCollisionCommon.h>

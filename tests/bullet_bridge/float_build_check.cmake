@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The float build (Debian's single-precision Bullet, btScalar = float): configures SplineRope with
 # -DSPLINEROPE_BULLET_DOUBLE=OFF into its own build directory, builds the bridge and one scenario
 # test there, runs it, and checks that it really ran with a 4-byte btScalar.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenario test that builds in both Bullet precisions (it needs no scene builders, so the float
 // build of tests/bullet_bridge/float_build_check.cmake compiles only the rope and the bridge): a rope
 // dropped onto a box comes to rest on it, a rope hitting a free box conserves momentum (to btScalar

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Friction the Bullet way (bullet_bridge/friction_combination.h): the rope-body coefficient is the
 // rope's times the body's getFriction(), a RopeWorld combiner replaces the rule, and a bad combiner
 // fails the rope's substep without escaping stepSimulation.

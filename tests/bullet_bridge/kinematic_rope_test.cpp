@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // KinematicRope in a Bullet world: the leading end tracks a body point or a scripted path exactly,
 // capsules follow the adaptive spline in the broadphase, dynamic bodies in the sweep are pushed out
 // one-way (the rope moves exactly as without them), static bodies are passed through, bad input is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Shared helpers of the narrowphase tests: placed bodies and vector comparisons.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Debug drawing (bullet_bridge/rope_debug_draw.h) through Bullet's debugDrawWorld: the curve as a
 // polyline, one capsule per proxy, one contact point per contact.
 #include "bullet_bridge/rope_debug_draw.h"

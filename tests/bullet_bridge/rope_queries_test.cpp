@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // World queries that see ropes (bullet_bridge/rope_queries.h): rays and contact tests return the rope
 // and the curve parameter s, through the capsules' broadphase proxies.
 #include "bullet_bridge/rope_queries.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenario tests of rope-rope and self-contact (bullet_bridge/rope_rope_contact.h) and of cutting a
 // rope in a Bullet world (RopeObject::cut).
 #include "bullet_bridge/rope_rope_contact.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenario tests of ropes as Bullet world objects (bullet_bridge/rope_world.h, rope_object.h):
 // resting contact, a thin bar, a fast impact, Newton's third law, two-way coupling, substeps, bad input.
 #include "bullet_bridge/rope_world.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bullet_bridge/segment_segment_distance.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Winches on ropes in a Bullet world (bullet_bridge/winch.h; docs/method.md §16): a winch on a body,
 // a winch that stalls at an attachment, winchTo stopping exactly, and a cut handing the end's winch on.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Script mode (cmake -DSOURCE_DIR=... -P check_method_citations.cmake).
 #
 # 1. No file of the repository refers to material outside it (the method sources the project was

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Script mode (cmake -DSOURCE_DIR=... -P check_published_figures.cmake).
 #
 # Every row of README.md's table "Measured on this 2-core machine" has a row with the same first

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The number of fields of an aggregate, counted at compile time: the largest N for which T{x1, ..., xN}
 // is well formed with arguments that convert to any type (the technique of Boost.PFR). A settings

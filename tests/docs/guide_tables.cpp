@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "docs/guide_tables.h"
 
 #include <cctype>

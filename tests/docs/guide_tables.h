@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Reading the settings tables of docs/user-guide.md for user_guide_test.cpp: the markdown tables
 // `| field | unit | default | range | meaning |`, each owned by the first code span of the heading

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Checks one settings struct against its table in docs/user-guide.md (user_guide_test.cpp lists the
 // structs). A StructSpec names the struct as the guide's heading does, lists its fields as member

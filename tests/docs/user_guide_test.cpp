@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // docs/user-guide.md against the code it documents: every settings struct a user configures has one
 // table in the guide that lists exactly its fields with their true defaults and enforced ranges
 // (settings_table_check.h says what is checked), and the guide's ropesim options are exactly

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Script mode (cmake -DSOURCE_DIR=... -P check_header_classes.cmake): every header under rope/,
 # bullet_bridge/ and render/ is in exactly one of the API, SUPPORT and INTERNAL lists of
 # cmake/SplineRopeHeaders.cmake, every listed header exists, and every SUPPORT header says "Not API".

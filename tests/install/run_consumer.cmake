@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Script mode (cmake -P): install this build into a scratch prefix, then configure, build and run a
 # consumer project against the installed tree only. Any failure is fatal.
 #

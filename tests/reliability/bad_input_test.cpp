@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bad input, one table (issue 17): every case below calls a public entry point of rope/,
 // bullet_bridge/ or render/ with a NaN, infinite, zero, negative, out-of-range or degenerate value and
 // must be refused with rope::InvalidArgument naming the parameter (and, where given, its value as

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Corpus replay (issue 17): every input kept in the repository for the libFuzzer targets runs again
 // through the same fuzzers driven by bytes (fuzz.h), with the floating-point traps on, so the
 // invariants the targets check (fuzz.cpp) are checked here too on every default test run:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Extremes never explode (issue 17). Stress scenes with default settings (RodSettings{},
 // BulletRopeSettings{}, Bullet's stock world; only what the scene is about is changed), each asserting
 //   - no NaN (floating-point traps on, and every rope's state checked finite after every step),

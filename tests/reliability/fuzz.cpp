@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "reliability/fuzz.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The fuzzers behind fuzz_test.cpp, the soak runs, the libFuzzer targets (fuzz_targets/) and the
 // corpus replay (corpus_test.cpp). One logic, two sources of choices:

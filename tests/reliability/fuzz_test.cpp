@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Deterministic fuzzing (issue 17): random sequences of operations and random, often bad, inputs from
 // a fixed seed, checked against invariants after every operation. The floating-point traps stay on,
 // so a NaN or an overflow in the library stops the test where it happens.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Golden determinism (Box2D's guard, issue 17). Twin runs agreeing bitwise (the scenes' own tests)
 // says a run repeats itself; this says it repeats what it did when the hashes were recorded: each
 // ropesim scene is simulated for kSeconds and the bits of its full state (DemoScene::appendState:

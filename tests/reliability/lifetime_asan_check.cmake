@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The lifetime tests under AddressSanitizer in the default test run: configures SplineRope with
 # -DSPLINEROPE_SANITIZE=ON into its own build directory (Debug: -O0 compiles faster, and the tests
 # are small), builds only the lifetime test binary with the rope and bridge libraries it needs,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bodies that leave and objects destroyed in any order (issue 17, "Memory errors"). Freed memory is
 // made inaccessible (test::Guarded), so a use after free stops these tests with SIGSEGV in a plain
 // release build; the default test run also builds and runs this binary under AddressSanitizer

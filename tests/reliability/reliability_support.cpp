@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "reliability/reliability_support.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Shared pieces of the reliability tests (tests/reliability/): a Bullet world whose actions a test
 // can run directly (to hand the ropes a bad time step with the floating-point traps still on), and

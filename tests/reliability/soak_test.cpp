@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Soak runs (label "soak", not in the default run; issue 17): long simulations that must stay healthy.
 //   - the knot scene and the pile scene for 10 simulated minutes each;
 //   - 100 ropes lying on the ground for 1 simulated minute;

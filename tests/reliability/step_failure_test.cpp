@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Nothing escapes btDiscreteDynamicsWorld::stepSimulation (issue 17): every failure inside a rope's
 // substep is injected here and must come back as a counted, reported failure, with the rope keeping
 // its last good state and the world and the other ropes going on.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/frame_filter.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Shared assertions on triangle meshes for the extraction tests.
 

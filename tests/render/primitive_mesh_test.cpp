@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/primitive_mesh.h"
 
 #include <gtest/gtest.h>

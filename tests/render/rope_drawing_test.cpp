@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/rope_drawing.h"
 #include "render/primitive_mesh.h"
 

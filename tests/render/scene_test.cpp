@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/scene.h"
 
 #include <gtest/gtest.h>

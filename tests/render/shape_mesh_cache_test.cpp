@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/shape_mesh_cache.h"
 
 #include <btBulletCollisionCommon.h>

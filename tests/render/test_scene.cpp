@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "test_scene.h"
 
 #include "render/rope_drawing.h"

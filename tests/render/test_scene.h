@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The renderer's reference scene for tests and the benchmark: a ground plane with a box, sphere,
 // capsule, cylinder and cone, and a cubic B-spline rope draped over the box. Y is up, metres.

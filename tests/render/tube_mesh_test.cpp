@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/tube_mesh.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "render/world_extraction.h"
 
 #include <btBulletCollisionCommon.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Bad input names the parameter: each case changes the default settings in one way, and `use` (a
 // constructor, a validate() call, ...) must then throw rope::InvalidArgument whose parameter() is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "support/fp_exceptions.h"
 
 #include <cfenv>

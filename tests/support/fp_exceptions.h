@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Floating-point exception trapping for tests: an invalid operation (NaN from 0/0, sqrt(-1), an
 // ordered comparison with NaN), a division by zero or an overflow stops the test with SIGFPE at the

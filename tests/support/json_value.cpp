@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "support/json_value.h"
 
 #include <cctype>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A small JSON reader for tests that check what our programs write (ropesim --stats). Strict:
 // any syntax error throws std::runtime_error with the byte offset.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GoogleTest main for every SplineRope test binary: floating-point exceptions are trapped, so a NaN
 // or an overflow in SplineRope code fails the test where it happens.
 #include <gtest/gtest.h>

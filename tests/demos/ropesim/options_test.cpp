@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/ropesim/options.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/knot_scene.h"
 
 #include <gtest/gtest.h>

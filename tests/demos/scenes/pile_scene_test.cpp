@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/pile_scene.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "demos/scenes/tractrix_scene.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The winch (bullet_bridge/winch.h; docs/method.md §16) in the "winch" scene: a crane lowers a 10 kg
 // box by 0.5 m at 0.1 m/s and lifts it back.
 #include "demos/scenes/winch_scene.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Builds against the installed headers and libraries only: interpolate a path and insert a knot
 // (rope), touch a Bullet sphere with a rope capsule (bullet_bridge, through Bullet of the same
 // precision), and sweep a tube mesh (render, no GL context needed).

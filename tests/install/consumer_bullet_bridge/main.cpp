@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Uses SplineRope::bullet_bridge: a rope dropped onto a Bullet ground plane comes to rest on it.
 // Bullet is the package's own precision (PkgConfig::BULLET).
 #include <btBulletDynamicsCommon.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Uses SplineRope::render: renders a frame with and without a rope tube, headless (OSMesa), and
 // checks that the rope shows, then writes the frame as PNG.
 #include <cstdio>

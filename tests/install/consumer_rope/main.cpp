@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Uses SplineRope::rope alone (Eigen only): a rope pinned at both ends, laid straight and 20 %
 // compressed between supports 1 m apart, falls into the catenary (docs/method.md §8); a tractrix rope
 // dragged by its leading end follows it and keeps its length within 10 % (§13–§14).

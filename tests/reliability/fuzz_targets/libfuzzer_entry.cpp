@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer entry point of one of the three fuzzers of fuzz.h, chosen when compiled
 // (SPLINEROPE_FUZZ_ENTRY: fuzzSplineBytes, fuzzSettingsBytes or fuzzSceneBytes). Built only by the
 // `fuzz` preset (clang, -fsanitize=fuzzer,address,undefined); CONTRIBUTING.md says how to run them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/rod/banded_matrix.h"
 
 #include <gtest/gtest.h>

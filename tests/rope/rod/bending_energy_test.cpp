@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/rod/bending_energy.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/rod/coupled_solve.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/rod/pin_constraints.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Adaptivity after each step ([A] §4; docs/method.md §10).
 #include <gtest/gtest.h>
 

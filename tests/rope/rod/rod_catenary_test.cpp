@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenario: a rope pinned at both ends hangs in the catenary ([A] §5.1's two fixed extremities).
 #include <gtest/gtest.h>
 

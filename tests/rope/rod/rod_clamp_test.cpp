@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The rod's clamp (a weld: C(s) at a target and the tangent at s along a direction): cantilevers
 // against Euler–Bernoulli (small deflection) and the elastica (large deflection, tip load and self
 // weight; references by a shooting method here, checked against Bisshopp & Drucker 1945), the

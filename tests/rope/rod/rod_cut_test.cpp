@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cutting ([A] §5.1; docs/method.md §4).
 #include <gtest/gtest.h>
 

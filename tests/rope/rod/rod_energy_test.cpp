@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenario: energy and momentum behaviour of the linearised backward-Euler step (docs/method.md §8),
 // with adaptivity off (the step alone) and on (the default: knots inserted and removed while it runs).
 #include <gtest/gtest.h>

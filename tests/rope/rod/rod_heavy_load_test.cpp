@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenario: a light rope holding a heavy point load (mass ratio 1000:1) at h = 1/240 s.
 #include <gtest/gtest.h>
 

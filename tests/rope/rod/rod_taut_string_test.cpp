@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenario: a taut string ([A]'s rod with stretching only) pinned at both ends, vibrating in its
 // first transverse mode. Analytic frequency of a prestressed string: the end-to-end stretch
 // eps = D / L0 - 1 gives the Green–Lagrange tension T = EA eps (1 + eps)(1 + eps / 2), the mass per

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Paying out and reeling in at an end (Rod::payOut; docs/method.md §16).
 #include <gtest/gtest.h>
 

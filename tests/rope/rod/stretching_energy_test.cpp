@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/rod/stretching_energy.h"
 
 #include <gtest/gtest.h>

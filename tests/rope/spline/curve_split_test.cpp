@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/spline/curve_split.h"
 
 #include <gtest/gtest.h>

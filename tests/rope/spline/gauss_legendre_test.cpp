@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/spline/gauss_legendre.h"
 
 #include <gtest/gtest.h>

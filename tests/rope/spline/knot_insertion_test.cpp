@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rope/spline/knot_insertion.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Shared helpers for the B-spline tests: random non-uniform curves (clamped and unclamped, degree
 // 1..5, repeated knots), an independent Cox–de Boor reference, and size measures for tolerances.

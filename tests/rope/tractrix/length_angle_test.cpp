@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Curve length vs included angle (docs/method.md §14 check table) and the threshold helper built on it.
 #include "rope/tractrix/length_angle.h"
 

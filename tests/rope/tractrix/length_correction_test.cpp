@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The length correction (beyond [B]): it brings the curve's arc length to the target with the leading
 // point fixed and every side direction kept, converges like Newton's method (which checks its
 // derivative), leaves a curve already at its length bitwise alone, and refuses a correction that would

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Subdivision leaves the curve unchanged and opens every corner; merging reports its own error,
 // picks the candidate with the smaller length error, and respects the guard and the floor.
 #include "rope/tractrix/polygon_adaptation.h"

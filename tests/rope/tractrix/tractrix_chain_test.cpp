@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The chain pass: exact segment lengths, decaying displacements ([B] §2.1), bad input.
 #include "rope/tractrix/tractrix_chain.h"
 

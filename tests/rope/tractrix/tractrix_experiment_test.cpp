@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // [B] §4's planar experiment on paths of our own (the paper does not give its path): a 5 m straight
 // object, 52 leading-end steps of 0.5 m, 6 initial sides, 140°/160°. Also the threshold/length-error
 // relation on random paths. Results are printed and recorded as test properties.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // TractrixRope: initialisation, per-step bookkeeping, TRX's exact lengths and decaying
 // displacements through the rope API, twin-run determinism, and every bad-input category.
 #include "rope/tractrix/tractrix_rope.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The closed-form tractrix of one segment against the classical tractrix ([B] eq. 1) and a fine
 // numerical integration of its ODE (docs/method.md §13), including the degenerate cases.
 #include "rope/tractrix/tractrix_segment.h"

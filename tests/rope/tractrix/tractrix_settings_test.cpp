@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Validation of TractrixSettings: every field's bad values are rejected with its name.
 #include "rope/tractrix/tractrix_settings.h"
 

@@ -7,7 +7,9 @@
 //   queue()   puts the active samples' springs on the rod (Rod::addSpringSample: no knots);
 //   update()  after a trial step, makes contact unilateral and friction Coulomb's: gives sliding
 //             samples the friction bound mu f_n of the normal force they end the step with (solved
-//             exactly, with the trial corrected), releases samples whose end-of-step normal force
+//             exactly, with the trial corrected, where the bounds are strongly coupled, on bodies at
+//             rest and on a rope that touched no rope last substep: docs/method.md §11; otherwise
+//             re-bounded pass by pass), releases samples whose end-of-step normal force
 //             pulls, switches sticking samples whose spring needs more than mu f_n to sliding, and
 //             re-bounds sliding friction where the normal force still moved by more than 5 %; true
 //             if the trial must be solved again;

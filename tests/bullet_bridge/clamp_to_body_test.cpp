@@ -16,6 +16,7 @@
 #include "bullet_bridge/rope_world.h"
 #include "demos/scenes/physics_world.h"
 #include "rope/common/error.h"
+#include "support/elastica.h"
 
 namespace rope::bullet {
 namespace {
@@ -25,46 +26,6 @@ constexpr double kPi = 3.14159265358979323846;
 
 void stepWorld(btDiscreteDynamicsWorld& world, int steps) {
   for (int i = 0; i < steps; ++i) world.stepSimulation(btScalar(kStep), 1, btScalar(kStep));
-}
-
-// The inextensible elastica of a cantilever clamped horizontally at s = 0 under its own weight w per
-// metre: EI theta'' = w (L - s) cos theta, theta(0) = 0, theta'(L) = 0 (theta from the x axis,
-// positive up), by shooting on theta'(0) with RK4 and bisection (the same reference as
-// tests/rope/rod/rod_clamp_test.cpp, checked there against Bisshopp & Drucker 1945).
-Vec3 elasticaTip(double length, double bendingStiffness, double weightPerLength) {
-  const int steps = 4000;
-  const double ds = length / steps;
-  auto shoot = [&](double curvature0, Vec3& tip) {
-    double state[4] = {0.0, curvature0, 0.0, 0.0};
-    auto derivative = [&](double s, const double* u, double* du) {
-      du[0] = u[1];
-      du[1] = weightPerLength * (length - s) * std::cos(u[0]) / bendingStiffness;
-      du[2] = std::cos(u[0]);
-      du[3] = std::sin(u[0]);
-    };
-    for (int i = 0; i < steps; ++i) {
-      const double s = i * ds;
-      double k1[4], k2[4], k3[4], k4[4], u[4];
-      derivative(s, state, k1);
-      for (int c = 0; c < 4; ++c) u[c] = state[c] + 0.5 * ds * k1[c];
-      derivative(s + 0.5 * ds, u, k2);
-      for (int c = 0; c < 4; ++c) u[c] = state[c] + 0.5 * ds * k2[c];
-      derivative(s + 0.5 * ds, u, k3);
-      for (int c = 0; c < 4; ++c) u[c] = state[c] + ds * k3[c];
-      derivative(s + ds, u, k4);
-      for (int c = 0; c < 4; ++c) state[c] += ds / 6.0 * (k1[c] + 2 * k2[c] + 2 * k3[c] + k4[c]);
-    }
-    tip = Vec3(state[2], state[3], 0.0);
-    return state[1];
-  };
-  double lo = -0.5 * weightPerLength * length * length / bendingStiffness, hi = 0.0;
-  Vec3 tip;
-  for (int i = 0; i < 100; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (shoot(mid, tip) > 0.0 ? hi : lo) = mid;
-  }
-  shoot(0.5 * (lo + hi), tip);
-  return tip;
 }
 
 // A 1 m nylon rope (EI = 0.49 N m^2, 0.0903 kg/m: w L^3 / EI = 1.8, a large deflection) clamped
@@ -87,7 +48,9 @@ TEST(ClampToBody, CantileverOnAStaticBodyMatchesTheElastica) {
     previous = tip;
   }
   const double ei = rod.effectiveBendingStiffness();
-  const Vec3 reference = Vec3(0, 1, 0) + elasticaTip(1.0, ei, rod.effectiveLinearDensity() * 9.81);
+  // The elastica under its own weight (tests/support/elastica.h).
+  const test::ElasticaTip shape = test::elastica(1.0, ei, 0.0, rod.effectiveLinearDensity() * 9.81);
+  const Vec3 reference = Vec3(0, 1, 0) + Vec3(shape.x, shape.y, 0.0);
   const Vec3 tip = rope.rod().position(1.0);
   const double error = (tip - reference).norm();  // over L = 1 m
   EXPECT_LT(error, 0.005) << "tip " << tip.transpose() << " elastica " << reference.transpose();

@@ -14,6 +14,7 @@
 
 #include "rope/common/error.h"
 #include "rope/rod/rod.h"
+#include "support/elastica.h"
 #include "tests/rope/rod/rod_test_util.h"
 
 namespace rope {
@@ -21,63 +22,11 @@ namespace {
 
 using test::RodSnapshot;
 using test::sameState;
+using test::ElasticaTip;
+using test::elastica;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// ---- reference: the inextensible elastica of a cantilever clamped horizontally at s = 0 ----
-// theta(s) is the tangent's angle from the x axis (positive upwards); a downward tip load P and a
-// downward weight w per length give the moment balance EI theta' = -P (x_L - x) - int_s^L w (x(t) - x) dt,
-// i.e. EI theta'' = (P + w (L - s)) cos theta with theta(0) = 0 (clamp) and theta'(L) = 0 (free
-// end). Shooting on theta'(0) with RK4 and bisection.
-struct ElasticaTip {
-  double x = 0.0;  // m, along the clamp direction
-  double y = 0.0;  // m, upwards (negative: deflected down)
-};
-
-ElasticaTip elastica(double length, double bendingStiffness, double tipLoad, double weightPerLength) {
-  const int steps = 4000;
-  const double ds = length / steps;
-  // State: theta, theta', x, y. Returns theta'(L) and the tip.
-  auto shoot = [&](double curvature0, ElasticaTip& tip) {
-    double state[4] = {0.0, curvature0, 0.0, 0.0};
-    auto derivative = [&](double s, const double* u, double* du) {
-      du[0] = u[1];
-      du[1] = (tipLoad + weightPerLength * (length - s)) * std::cos(u[0]) / bendingStiffness;
-      du[2] = std::cos(u[0]);
-      du[3] = std::sin(u[0]);
-    };
-    for (int i = 0; i < steps; ++i) {
-      const double s = i * ds;
-      double k1[4], k2[4], k3[4], k4[4], u[4];
-      derivative(s, state, k1);
-      for (int c = 0; c < 4; ++c) u[c] = state[c] + 0.5 * ds * k1[c];
-      derivative(s + 0.5 * ds, u, k2);
-      for (int c = 0; c < 4; ++c) u[c] = state[c] + 0.5 * ds * k2[c];
-      derivative(s + 0.5 * ds, u, k3);
-      for (int c = 0; c < 4; ++c) u[c] = state[c] + ds * k3[c];
-      derivative(s + ds, u, k4);
-      for (int c = 0; c < 4; ++c) state[c] += ds / 6.0 * (k1[c] + 2 * k2[c] + 2 * k3[c] + k4[c]);
-    }
-    tip.x = state[2];
-    tip.y = state[3];
-    return state[1];
-  };
-  // |EI theta'(0)| is the root moment, at most P L + w L^2 / 2 (the undeflected lever arms).
-  double lo = -(tipLoad * length + 0.5 * weightPerLength * length * length) / bendingStiffness;
-  double hi = 0.0;
-  ElasticaTip tip;
-  for (int i = 0; i < 100; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (shoot(mid, tip) > 0.0) {
-      hi = mid;
-    } else {
-      lo = mid;
-    }
-  }
-  shoot(0.5 * (lo + hi), tip);
-  return tip;
-}
 
 TEST(ElasticaReference, MatchesBisshoppAndDrucker) {
   // Bisshopp & Drucker, "Large deflection of cantilever beams", Q. Appl. Math. 3 (1945) 272-275:

@@ -328,6 +328,8 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
   // Rope-rope contact corrects the trial after the body contacts' passes, which would spoil friction
   // bounds made exact before it: a rope that touched ropes last substep keeps the pass-by-pass ones.
   bodyContacts_.setExactBounds(lastStep_.ropeContacts == 0);
+  const bool nearRopes = nearRopes_;
+  nearRopes_ = false;
   contacts_.clear();
   pending_.clear();
   lastStep_ = RopeStepRecord();
@@ -340,6 +342,10 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
       [this](const btCollisionObject& object, double s0, double s1) { return attachedNear(object, s0, s1); },
       [this](const btCollisionObject& object) { return bodyFriction(object); }, h, contacts_, lastStep_);
   for (RopeContactRecord& record : contacts_) record.rope = this;
+  // Contact forces are not smooth in time: a substep with body contact candidates, or after one with
+  // rope-rope candidates, is a backward-Euler step (Rod::restartTimeIntegration); free and attached
+  // stretches of motion keep the rod's second-order BDF2.
+  if (!contacts_.empty() || nearRopes) rod_.restartTimeIntegration();
 
   queueAttachments(h);
 

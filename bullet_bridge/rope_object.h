@@ -187,9 +187,11 @@ class RopeObject {
  private:
   friend class RopeWorld;
   // Rope-rope contact statistics of the substep (RopeWorld fills them in between the two halves).
-  void recordRopeContacts(int active, double maxOverlap) {
+  // `near`: the rope had rope-rope or self-contact candidates (active or not) this substep.
+  void recordRopeContacts(int active, double maxOverlap, bool near) {
     lastStep_.ropeContacts = active;
     lastStep_.maxSelfOverlap = maxOverlap;
+    nearRopes_ = near;
   }
   void enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld);
   void leaveWorld();
@@ -248,6 +250,7 @@ class RopeObject {
   std::vector<RopeContactRecord> contacts_;
   std::vector<RopeAttachmentRecord> attachmentLoads_;
   RopeStepRecord lastStep_;
+  bool nearRopes_ = false;  // rope-rope candidates last substep: the next one restarts BDF2
   std::vector<PendingSpring> pending_;
   Rod::LoadQueue userLoads_;  // what the user queued on the rod for this substep
   BodyContacts bodyContacts_;

@@ -258,14 +258,15 @@ void RopeWorld::solveRopeContacts(double h) {
       },
       [&](const char* message) { failRopeContacts(message); });
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
-    int active = 0;
+    int active = 0, near = 0;
     double overlap = 0.0;
     for (const RopePairContactRecord& record : report_.ropeContacts) {
       if (record.ropeA != ropes_[r] && record.ropeB != ropes_[r]) continue;
       overlap = std::max(overlap, record.depth);
+      ++near;
       if (record.active) ++active;
     }
-    ropes_[r]->recordRopeContacts(active, overlap);
+    ropes_[r]->recordRopeContacts(active, overlap, near > 0);
   }
   report_.ropeContactSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
 }

@@ -183,8 +183,20 @@ double Rod::restMetric(double s) const {
   return evaluateCurve(knots_, rest_, s).firstDerivative.norm();
 }
 
+namespace {
+
+// The basis functions at s (span k - d ... k) for point masses; returns the first control point's index.
+int basisAt(const KnotVector& knots, double s, BasisValues& basis) {
+  const int k = knots.findSpan(s);
+  evaluateBasis(knots, k, s, 0, basis);
+  return k - knots.degree();
+}
+
+}  // namespace
+
 double Rod::mass() const {
   double sum = 0.0;
+  for (const auto& [s, m] : pointMasses_) sum += m;
   for (int j = 0; j < integrals_.spanCount(); ++j) {
     const SpanView span = integrals_.span(j);
     for (int a = 0; a < span.localCount; ++a) sum += span.gravity[a];
@@ -198,6 +210,7 @@ Vec3 Rod::momentum() const {
     const SpanView span = integrals_.span(j);
     for (int a = 0; a < span.localCount; ++a) sum += span.gravity[a] * velocities_[static_cast<size_t>(j + a)];
   }
+  for (const auto& [s, m] : pointMasses_) sum += m * velocity(s);
   return sum;
 }
 
@@ -210,6 +223,7 @@ double Rod::kineticEnergy() const {
         sum += 0.5 * span.mass[a * span.localCount + b] *
                velocities_[static_cast<size_t>(j + a)].dot(velocities_[static_cast<size_t>(j + b)]);
   }
+  for (const auto& [s, m] : pointMasses_) sum += 0.5 * m * velocity(s).squaredNorm();
   return sum;
 }
 
@@ -226,6 +240,7 @@ double Rod::gravityEnergy() const {
     for (int a = 0; a < span.localCount; ++a)
       sum -= span.gravity[a] * settings_.gravity.dot(points_[static_cast<size_t>(j + a)]);
   }
+  for (const auto& [s, m] : pointMasses_) sum -= m * settings_.gravity.dot(position(s));
   return sum;
 }
 
@@ -239,12 +254,14 @@ void Rod::setGravity(const Vec3& gravity) {
 void Rod::setControlPoints(const PointList& points) {
   requirePoints("points", points, points_.size());
   points_ = points;
+  restartHistory();
   trialValid_ = false;
 }
 
 void Rod::setVelocities(const PointList& velocities) {
   requirePoints("velocities", velocities, velocities_.size());
   velocities_ = velocities;
+  restartHistory();
   trialValid_ = false;
 }
 
@@ -378,6 +395,15 @@ void Rod::addClampNeighbours(std::vector<double>& interactions) const {
     while (above < controlPointCount() && !(knots_[above] > p.parameter)) ++above;
     if (knots_[above] > p.parameter && knots_[above] < endParameter()) interactions.push_back(knots_[above]);
   }
+}
+
+// ---- point masses ----
+
+void Rod::addPointMass(double s, double mass) {
+  validateParameter(s);
+  requirePositive("mass", mass);
+  pointMasses_.emplace_back(s, mass);
+  trialValid_ = false;
 }
 
 // ---- loads ----
@@ -567,14 +593,52 @@ StepReport Rod::commitTrial() {
   for (const Spring& spring : springs_)
     if (spring.interaction) interactions_.push_back(spring.parameter);
   interactions_.insert(interactions_.end(), markedInteractions_.begin(), markedInteractions_.end());
+  recordInternalImpulse();  // before the swap: it needs the start-of-step forces and the new velocities
   points_.swap(newPoints_);
   velocities_.swap(newVelocities_);
   for (const Pin& p : pins_) interactions_.push_back(p.parameter);
+  for (const auto& pointMass : pointMasses_) interactions_.push_back(pointMass.first);
   addClampNeighbours(interactions_);
   clearLoads();
   adapt(report);
   report.controlPoints = controlPointCount();
   return report;
+}
+
+double Rod::internalWeight(double h) const {
+  if (settings_.timeIntegrator != TimeIntegrator::kBdf2 || historySteps_ == 0) return 1.0;
+  // BDF2's coefficients assume equal steps; a changed h restarts it (relative change above 1e-12).
+  if (!(std::abs(h - historyStep_) <= 1e-12 * h)) return 1.0;
+  return 4.0 / 9.0;
+}
+
+void Rod::recordInternalImpulse() {
+  if (settings_.timeIntegrator != TimeIntegrator::kBdf2) return;
+  // g = c h (F_int - (h + beta) K v_new) + H (method eq. 22c): the momentum the internal forces gave
+  // this step, linearised as the step was, with the trial's final velocities (corrections included).
+  const int n = controlPointCount();
+  const int local = degree() + 1;
+  const size_t blocksPerSpan = static_cast<size_t>(local * (local + 1) / 2);
+  const double h = trialStep_;
+  const double c = trialInternalWeight_;
+  const double scale = h + settings_.stiffnessDamping;
+  previousInternalImpulse_.swap(internalImpulse_);
+  internalImpulse_.resize(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) internalImpulse_[static_cast<size_t>(i)] = (c * h) * internalForce_[static_cast<size_t>(i)];
+  for (int j = 0; j < integrals_.spanCount(); ++j) {
+    const Eigen::Matrix3d* k = &stiffnessBlocks_[static_cast<size_t>(j) * blocksPerSpan];
+    const Vec3* v = &newVelocities_[static_cast<size_t>(j)];
+    Vec3* g = &internalImpulse_[static_cast<size_t>(j)];
+    for (int a = 0; a < local; ++a) {
+      for (int b = 0; b <= a; ++b, ++k) {
+        g[a] -= (c * h * scale) * (*k * v[b]);
+        if (a != b) g[b] -= (c * h * scale) * (*k * v[a]);  // blocks are symmetric
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) internalImpulse_[static_cast<size_t>(i)] += historyTerm_[static_cast<size_t>(i)];
+  historySteps_ = c < 1.0 ? 2 : 1;
+  historyStep_ = h;
 }
 
 bool Rod::assembleAndSolve(double h, StepReport& report) {
@@ -584,14 +648,18 @@ bool Rod::assembleAndSolve(double h, StepReport& report) {
   const double axial = settings_.axialStiffness();
   const double alpha = settings_.massDamping;
   const double beta = settings_.stiffnessDamping;
-  const double massScale = 1.0 + h * alpha;    // M + hD + h^2 K with D = alpha M + beta K
-  const double stiffScale = h * h + h * beta;
+  const double c = internalWeight(h);
+  const double massScale = 1.0 + h * alpha;    // M + h alpha M + c (h^2 + h beta) K (method eq. 22a)
+  const double stiffScale = c * (h * h + h * beta);
   const Vec3 gravity = settings_.gravity;
+  const size_t blocksPerSpan = static_cast<size_t>(local * (local + 1) / 2);
 
   system_.reset(n, 3, d);
   force_.assign(static_cast<size_t>(n), Vec3::Zero());
+  internalForce_.assign(static_cast<size_t>(n), Vec3::Zero());
   stiffnessTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
   massTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
+  stiffnessBlocks_.resize(static_cast<size_t>(integrals_.spanCount()) * blocksPerSpan);
 
   Eigen::Matrix3d blocks[(kMaxDegree + 1) * (kMaxDegree + 1)];
   for (int j = 0; j < integrals_.spanCount(); ++j) {
@@ -601,16 +669,20 @@ bool Rod::assembleAndSolve(double h, StepReport& report) {
     Vec3* f = &force_[static_cast<size_t>(j)];
     Vec3* kv = &stiffnessTimesV_[static_cast<size_t>(j)];
     Vec3* mv = &massTimesV_[static_cast<size_t>(j)];
+    Eigen::Matrix3d* stored = &stiffnessBlocks_[static_cast<size_t>(j) * blocksPerSpan];
     stretchingSpan(span, q, axial, StiffnessMode::kClamped, f, blocks);
     for (int a = 0; a < local; ++a) {
-      Vec3 fa = span.gravity[a] * gravity;
+      const Vec3 weight = span.gravity[a] * gravity;
+      Vec3 fa = weight;
       for (int b = 0; b < local; ++b) fa -= span.bending[a * local + b] * (q[b] - q[0]);  // see bending_energy.cpp
       f[a] += fa;
+      internalForce_[static_cast<size_t>(j + a)] -= weight;  // force_ minus gravity, completed below
     }
     for (int a = 0; a < local; ++a) {
       for (int b = 0; b <= a; ++b) {
         Eigen::Matrix3d& k = blocks[a * local + b];
         k.diagonal().array() += span.bending[a * local + b];
+        *stored++ = k;
         const double m = span.mass[a * local + b];
         kv[a] += k * v[b];
         mv[a] += m * v[b];
@@ -625,7 +697,25 @@ bool Rod::assembleAndSolve(double h, StepReport& report) {
     }
   }
 
+  // The internal (stretching and bending) forces: force_ so far less gravity.
+  for (int i = 0; i < n; ++i) internalForce_[static_cast<size_t>(i)] += force_[static_cast<size_t>(i)];
+
   BasisValues basis;
+  // Point masses (method eq. 11a): m b_a b_b in the mass matrix, m g b_a in the gravity load.
+  for (const auto& [s, m] : pointMasses_) {
+    const int first = basisAt(knots_, s, basis);
+    Vec3 u = Vec3::Zero();
+    for (int a = 0; a < local; ++a) u += basis.d[0][static_cast<size_t>(a)] * velocities_[static_cast<size_t>(first + a)];
+    for (int a = 0; a < local; ++a) {
+      const double ba = basis.d[0][static_cast<size_t>(a)];
+      force_[static_cast<size_t>(first + a)] += (m * ba) * gravity;
+      massTimesV_[static_cast<size_t>(first + a)] += (m * ba) * u;
+      for (int b = 0; b <= a; ++b) {
+        system_.addBlock(first + a, first + b,
+                         (massScale * m * ba * basis.d[0][static_cast<size_t>(b)]) * Eigen::Matrix3d::Identity());
+      }
+    }
+  }
   for (const PointLoad& load : loads_) {
     const int k = knots_.findSpan(load.parameter);
     evaluateBasis(knots_, k, load.parameter, 0, basis);
@@ -649,10 +739,23 @@ bool Rod::assembleAndSolve(double h, StepReport& report) {
     }
   }
 
+  // BDF2's history term H = (6 g_n - g_{n-1}) / 9 (method eq. 22c), zero on a restart step.
+  historyTerm_.assign(static_cast<size_t>(n), Vec3::Zero());
+  if (c < 1.0) {
+    for (int i = 0; i < n; ++i) {
+      const size_t u = static_cast<size_t>(i);
+      historyTerm_[u] = (6.0 * internalImpulse_[u] - (historySteps_ > 1 ? previousInternalImpulse_[u] : Vec3::Zero())) / 9.0;
+    }
+  }
+  trialInternalWeight_ = c;
   rhs_.resize(static_cast<size_t>(3 * n));
   for (int i = 0; i < n; ++i) {
-    const Vec3 r = h * (force_[static_cast<size_t>(i)] - alpha * massTimesV_[static_cast<size_t>(i)] -
-                        (beta + h) * stiffnessTimesV_[static_cast<size_t>(i)]);
+    const size_t u = static_cast<size_t>(i);
+    // Backward Euler (and BDF2's restart step) in the one expression of eq. 22, so that its rounding
+    // does not depend on the integrator chosen; BDF2 reweights the internal part (eq. 22a).
+    const Vec3 r = c == 1.0 ? Vec3(h * (force_[u] - alpha * massTimesV_[u] - (beta + h) * stiffnessTimesV_[u]))
+                            : Vec3(h * (force_[u] - internalForce_[u] - alpha * massTimesV_[u]) +
+                                   (c * h) * (internalForce_[u] - (beta + h) * stiffnessTimesV_[u]) + historyTerm_[u]);
     for (int axis = 0; axis < 3; ++axis) rhs_[static_cast<size_t>(3 * i + axis)] = r[axis];
   }
   if (!system_.factorize()) {

@@ -2,17 +2,23 @@
 #pragma once
 // The dynamic adaptive rod ([A] §3–5; docs/method.md §5–§10): a B-spline curve whose control points are the
 // degrees of freedom, with mass and gravity from a continuous linear density, Green–Lagrange
-// stretching ([A] eq. 11), a continuous bending energy (bending_energy.h), a linearised backward-Euler
-// step solved by a block-banded Cholesky in O(n), pins and clamps (pin + tangent direction) by
+// stretching ([A] eq. 11), a continuous bending energy (bending_energy.h), a linearised implicit step
+// (BDF2 by default, backward Euler on request: TimeIntegrator in rod_settings.h) solved by a
+// block-banded Cholesky in O(n), pins and clamps (pin + tangent direction) by
 // Lagrange multipliers, knot insertion and removal after each step, and cutting. Knows nothing of
 // Bullet.
 //
 // Units: metres, seconds, kilograms, newtons. The curve parameter s runs over
 // [beginParameter(), endParameter()]; for ropes created from a segment it is the rest arclength.
 //
-// Step: (M + hD + h^2 K) dv = h (F + f_ext - D v - h K v), v += dv, q += h v (method §8, eqs. 22–23), with
-// D = massDamping M + stiffnessDamping K (Rayleigh), K the stretching stiffness with the Gauss–Newton
-// clamp plus the constant bending stiffness, and pins and clamps imposed on the end-of-step positions.
+// Step (method §8, eqs. 22a–23): (M + h alpha M + c (h^2 + h beta) K) dv
+//     = h (f_ext + M g - alpha M v) + c h (F_int - (h + beta) K v) + H,   v += dv, q += h v,
+// with Rayleigh damping D = alpha M + beta K (massDamping, stiffnessDamping), F_int the stretching and
+// bending forces, K their stiffness (stretching with the Gauss–Newton clamp, plus the constant bending
+// stiffness), pins and clamps imposed on the end-of-step positions. Backward Euler: c = 1, H = 0. BDF2
+// (the default): c = 4/9 and H = (6 g_n - g_{n-1}) / 9 from the internal impulses g of the last two
+// steps (eq. 22c); loads, springs, gravity and mass damping keep the full weight h in both, so the rod's
+// momentum changes by exactly the impulse its loads deliver.
 // Then adaptivity ([A] §4): knots at interaction points, insertion where the control polygon bends
 // (included angle < insertAngle), removal where it is straight (> removeAngle) and the removal error
 // is within removalErrorBound; counts stay within [minControlPoints, maxControlPoints].
@@ -137,6 +143,13 @@ class Rod {
   // Replace positions and/or velocities (same count, finite; "points"/"velocities" in errors).
   void setControlPoints(const PointList& points);
   void setVelocities(const PointList& velocities);
+  // Forgets the time integrator's history (TimeIntegrator::kBdf2): the next step is a backward-Euler
+  // step, after which BDF2 resumes. Replacing the state, changing knots or h, and cutting do it too. A
+  // bridge calls it before a step whose loads are not smooth in time (contact comes and goes, sticks
+  // and slips): BDF2 extrapolates the last two steps' internal forces, which across an impact
+  // overshoots (the pile scene's self-overlap grew 9x), while backward Euler is L-stable and exact in
+  // momentum either way. No effect with kBackwardEuler.
+  void restartTimeIntegration() { restartHistory(); }
 
   // ---- pins ----
   // Holds C(s) at target (default: where it is now). Throws InvalidArgument for s outside the valid
@@ -168,6 +181,15 @@ class Rod {
   // id or a pin's id ("id"), and like clamp() for the target and direction.
   void setClampTarget(int id, const Vec3& target, const Vec3& direction);
   void releaseClamp(int id);  // throws for an unknown id or a pin's id ("id")
+
+  // ---- point masses ----
+  // A lumped mass (kg, finite and > 0, else InvalidArgument "mass") carried at C(s) for the rest of the
+  // rod's life: a bob, a hook, a weight tied on. It adds m b_i(s) b_j(s) to the mass matrix and
+  // m g b_i(s) to the gravity load (method eq. 11a), counts in mass(), momentum() and the energies, is
+  // an interaction point for adaptivity (a knot stays there), and goes with its side when the rod is
+  // cut. Throws InvalidArgument("s", ...) like position(), and changes nothing then.
+  void addPointMass(double s, double mass);
+  const std::vector<std::pair<double, double>>& pointMasses() const { return pointMasses_; }  // (s, kg)
 
   // ---- loads for the next step (see the header comment) ----
   void addForce(double s, const Vec3& force);
@@ -254,7 +276,7 @@ class Rod {
   // minimumRestLength(), or reeling in further than reelInLimit(end).
   void payOut(End end, double length);
   // How much rest length (m) can be reeled in at `end`: down to minimumRestLength(), and no closer
-  // than settings.minKnotSpacing to a pin, clamp or queued load that is not at that end.
+  // than settings.minKnotSpacing to a pin, clamp, point mass or queued load that is not at that end.
   double reelInLimit(End end) const;
   double minimumRestLength() const { return 2.0 * settings_.minKnotSpacing; }  // m
 
@@ -313,6 +335,12 @@ class Rod {
   void requireResolvableKnot(double s) const;
   double restDistance(double a, double b) const;  // rest arc length between two parameters, m
   bool assembleAndSolve(double h, StepReport& report);
+  // The weight c of the internal forces in this step (method eq. 22a): 4/9 for a BDF2 step with
+  // history of the same h, 1 for backward Euler and for BDF2's restart step.
+  double internalWeight(double h) const;
+  // BDF2's history (method eq. 22c): records this step's internal impulse, or forgets it.
+  void recordInternalImpulse();
+  void restartHistory() { historySteps_ = 0; }
   // Whether `next` (end-of-step control points) breaks kMaxStepStretch (rod.cpp).
   bool overstretchedBy(const PointList& next) const;
   void adapt(StepReport& report);
@@ -333,6 +361,7 @@ class Rod {
   RodIntegrals integrals_;
   std::vector<Pin> pins_;
   int nextPinId_ = 1;
+  std::vector<std::pair<double, double>> pointMasses_;  // (s, kg)
   std::vector<PointLoad> loads_;
   std::vector<Spring> springs_;
 
@@ -342,6 +371,17 @@ class Rod {
   std::vector<ConstraintRows> rows_;
   std::vector<double> rhs_;
   PointList force_, stiffnessTimesV_, massTimesV_;
+  // The internal forces (stretching, bending; N per control point) at the start of the trial, their
+  // stiffness blocks (lower triangle per span) and the trial's history term (N s): what
+  // recordInternalImpulse() needs once the trial's end velocities are final.
+  PointList internalForce_, historyTerm_;
+  std::vector<Eigen::Matrix3d> stiffnessBlocks_;
+  double trialInternalWeight_ = 1.0;
+  // BDF2's history (method eq. 22c): the internal impulses g (N s per control point) of the last two
+  // steps, how many of them are valid (0 after a restart) and the h they were taken with (s).
+  PointList internalImpulse_, previousInternalImpulse_;
+  int historySteps_ = 0;
+  double historyStep_ = 0.0;
   PointList newPoints_, newVelocities_;
   std::vector<double> bend_;
   std::vector<int> spans_;

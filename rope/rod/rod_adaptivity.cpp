@@ -16,6 +16,7 @@ namespace rope {
 void Rod::insertKnotUnchecked(double s) {
   const KnotInsertion plan = planKnotInsertion(knots_, s);
   trialValid_ = false;
+  restartHistory();  // the internal impulses are per control point of the old basis
   knots_.insertValue(s);
   // The same linear map for every per-control-point field: the curve, its velocity field and the rest
   // metric are exactly unchanged, so mass and energies are too.
@@ -54,6 +55,7 @@ RemovalReport Rod::removeKnot(double s) {
 
 void Rod::applyRemoval(const KnotRemoval& plan) {
   trialValid_ = false;
+  restartHistory();
   knots_.eraseAt(plan.knotIndex);
   plan.apply(points_);
   plan.apply(velocities_);

@@ -40,6 +40,7 @@ std::pair<Rod, Rod> Rod::cut(double requested) const {
   }
   left.nextPinId_ = nextPinId_;
   right.nextPinId_ = nextPinId_;
+  for (const auto& pointMass : pointMasses_) (pointMass.first <= s ? left : right).pointMasses_.push_back(pointMass);
   for (const PointLoad& load : loads_) (load.parameter <= s ? left : right).loads_.push_back(load);
   for (const Spring& spring : springs_) (spring.parameter <= s ? left : right).springs_.push_back(spring);
   return {std::move(left), std::move(right)};

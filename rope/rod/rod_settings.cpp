@@ -69,6 +69,10 @@ void RodSettings::validate() const {
   if (bendingStiffness != kDerived) requireNonNegative("settings.bendingStiffness", bendingStiffness);
   requireNonNegative("settings.massDamping", massDamping);
   requireNonNegative("settings.stiffnessDamping", stiffnessDamping);
+  if (timeIntegrator != TimeIntegrator::kBdf2 && timeIntegrator != TimeIntegrator::kBackwardEuler) {
+    throw InvalidArgument("settings.timeIntegrator", std::to_string(static_cast<int>(timeIntegrator)),
+                          "is not a TimeIntegrator");
+  }
   for (int axis = 0; axis < 3; ++axis) {
     requireFinite("settings.gravity[" + std::to_string(axis) + "]", gravity[axis]);
   }

@@ -29,6 +29,29 @@ enum class StretchingQuadrature {
   kLockingFree,
 };
 
+// How the rod's step integrates in time (docs/method.md §8). Both are linearised once about the start of
+// the step and solve one block-banded system per step, O(n); both hold pins and clamps exactly at the end
+// of the step, keep q_new = q + h v_new, and apply loads, springs (contacts, attachments), gravity and
+// mass damping with the full step h, so the momentum a step gives the rope is exactly what the loads
+// deliver (the Bullet bridge's two-way exchange depends on it). They differ only in how the rod's own
+// internal forces (stretching, bending, stiffness damping) are weighted.
+enum class TimeIntegrator {
+  // The two-step backward differentiation formula, BDF2 (C. W. Gear, "Numerical Initial Value Problems in
+  // Ordinary Differential Equations", Prentice-Hall 1971; linearised once per step as in K.-J. Choi and
+  // H.-S. Ko, "Stable but responsive cloth", ACM Transactions on Graphics 21(3), 2002, 604–611), applied
+  // to the internal forces (method eqs. 22a–22c): second order, L-stable. It damps a mode of frequency
+  // omega by O((omega h)^4) per step where omega h << 1 and kills the stiff ones (omega h >> 1) within a
+  // step or two: a 1 m pendulum keeps over 99.9 % of its swing in 20 s even at h = 1/60 s. Its one step
+  // of history restarts (one backward-Euler step) when h changes, knots change, the rod is cut or its
+  // state is replaced.
+  kBdf2,
+  // Backward Euler linearised once ([A]'s "fast implicit Euler"; Baraff & Witkin 1998), method eq. 22:
+  // first order, L-stable. Damps a mode by about (omega h)^2 / 2 per step: a 1 m pendulum loses 31 % of
+  // its swing in 20 s at h = 1/240 s and 77 % at 1/60 s. For comparison with [A] and for users who want
+  // that damping.
+  kBackwardEuler,
+};
+
 struct RodSettings {
   // Sentinel values: derive the quantity from the others (see effective*() below).
   static constexpr double kDerived = -1.0;
@@ -46,6 +69,9 @@ struct RodSettings {
   double massDamping = 0.0;        // 1/s
   double stiffnessDamping = 0.0;   // s
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  // m/s^2, finite (y up, as in Bullet's demos)
+
+  // ---- time integration (docs/method.md §8) ----
+  TimeIntegrator timeIntegrator = TimeIntegrator::kBdf2;
 
   // ---- discretisation ----
   int degree = 3;                  // 1..kMaxDegree (cubic as in [A]); bending needs degree >= 2.

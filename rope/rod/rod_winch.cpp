@@ -103,10 +103,14 @@ void Rod::moveEnd(End end, double length) {
   integrals_.build(knots_, rest_, settings_.effectiveLinearDensity(), settings_.effectiveBendingStiffness(),
                    integrals_.gaussCount(), settings_.stretchingQuadrature);
   trialValid_ = false;
+  restartHistory();  // the end span's basis changed
   // Whatever held or loaded the end moves with it (the winch's pin, its spring).
   const double newEnd = end == End::kBegin ? beginParameter() : endParameter();
   for (Pin& pin : pins_) {
     if (pin.parameter == oldEnd) pin.parameter = newEnd;
+  }
+  for (auto& pointMass : pointMasses_) {
+    if (pointMass.first == oldEnd) pointMass.first = newEnd;
   }
   for (PointLoad& load : loads_) {
     if (load.parameter == oldEnd) load.parameter = newEnd;
@@ -126,6 +130,7 @@ double Rod::reelInLimit(End end) const {
     if (s != at) limit = std::min(limit, restDistance(at, s) - settings_.minKnotSpacing);
   };
   for (const Pin& pin : pins_) keepAway(pin.parameter);
+  for (const auto& pointMass : pointMasses_) keepAway(pointMass.first);
   for (const PointLoad& load : loads_) keepAway(load.parameter);
   for (const Spring& spring : springs_) keepAway(spring.parameter);
   for (const double marked : markedInteractions_) keepAway(marked);
@@ -145,7 +150,7 @@ void Rod::payOut(End end, double length) {
                             "reels in more than the " + formatValue(limit) +
                                 " m this end allows (the rope keeps minimumRestLength() = " +
                                 formatValue(minimumRestLength()) +
-                                " m and settings.minKnotSpacing from every pin, clamp and queued load)");
+                                " m and settings.minKnotSpacing from every pin, clamp, point mass and queued load)");
     }
   }
   const int d = degree();

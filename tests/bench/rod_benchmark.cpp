@@ -8,8 +8,9 @@
 
 namespace {
 
-rope::Rod makeRope(int n) {
+rope::Rod makeRope(int n, rope::TimeIntegrator integrator = rope::TimeIntegrator::kBdf2) {
   rope::RodSettings settings;
+  settings.timeIntegrator = integrator;
   settings.restLength = 1.0;
   settings.initialControlPoints = n;
   settings.minControlPoints = n;
@@ -34,5 +35,19 @@ void BM_RodStep(benchmark::State& state) {
   state.counters["n"] = n;
 }
 BENCHMARK(BM_RodStep)->RangeMultiplier(4)->Range(16, 4096)->Complexity(benchmark::oN)->Unit(benchmark::kMicrosecond);
+
+// The same step with backward Euler, for the cost of BDF2's history (the default above) in one run.
+void BM_RodStepBackwardEuler(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  rope::Rod rod = makeRope(n, rope::TimeIntegrator::kBackwardEuler);
+  for (auto _ : state) {
+    const rope::StepReport report = rod.step(1.0 / 240);
+    benchmark::DoNotOptimize(report.controlPoints);
+    if (!report.ok) state.SkipWithError(report.failure);
+  }
+  state.SetComplexityN(n);
+  state.counters["n"] = n;
+}
+BENCHMARK(BM_RodStepBackwardEuler)->RangeMultiplier(4)->Range(16, 4096)->Complexity(benchmark::oN)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -245,6 +245,8 @@ std::vector<Case> allCases() {
       rodSetting("rod degree 99", "settings.degree", "99", [](RodSettings& s) { s.degree = 99; }),
       rodSetting("rod stretchingQuadrature out of enum", "settings.stretchingQuadrature", "7",
                  [](RodSettings& s) { s.stretchingQuadrature = static_cast<StretchingQuadrature>(7); }),
+      rodSetting("rod timeIntegrator out of enum", "settings.timeIntegrator", "5",
+                 [](RodSettings& s) { s.timeIntegrator = static_cast<TimeIntegrator>(5); }),
       rodSetting("rod minControlPoints below degree+1", "settings.minControlPoints", "3",
                  [](RodSettings& s) { s.minControlPoints = 3; }),
       rodSetting("rod maxControlPoints below min", "settings.maxControlPoints", "3",

@@ -113,7 +113,7 @@ TEST(RodCatenary, StiffRopeSettlesToTheAnalyticCatenaryWithAtMost16ControlPoints
   const double expected = elastic.sag(kSpan);
   EXPECT_NEAR(expected, inextensibleSag(kSpan, kLength), 3e-5 * expected);  // nearly inextensible
   for (const auto& [h, bound] : {std::pair{1.0 / 240, 5e-4}, std::pair{1.0 / 60, 3e-3}}) {
-    const Rod rod = settle(settings, 12.0, h);
+    const Rod rod = settle(settings, 20.0, h);
     const double sag = -test::lowestY(rod);
     EXPECT_NEAR(sag, expected, bound * expected) << "h = " << h;
     EXPECT_LE(rod.controlPointCount(), 16);

@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+// Scenario: a rope pendulum in a Bullet world — a 10 kg rigid ball on 1 m of thin rope (default
+// RodSettings and BulletRopeSettings), hung from a fixed point and swung by 5 degrees. The rod's
+// default BDF2 step (docs/method.md §8) must keep the swing as a Bullet rigid-body pendulum does; the
+// attachment couples the two with backward Euler's weight, which the measured figures include.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "bullet_bridge/rope_world.h"
+#include "demos/scenes/physics_world.h"
+
+namespace rope::bullet {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kSwing = 5.0 * kPi / 180.0;
+constexpr double kBall = 10.0;    // kg
+constexpr double kRadius = 0.05;  // m, the ball's
+
+btVector3 bt(const Vec3& v) { return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())); }
+
+struct Swing {
+  double amplitudeKept = 0.0;  // largest |angle| in the last period over that in the first
+  double period = 0.0;         // s, mean over the run
+  double expectedPeriod = 0.0; // s
+};
+
+Swing swingInBullet(double h, double seconds) {
+  demos::PhysicsWorld physics;  // gravity -9.81 along y, no ground: nothing to touch
+  RodSettings rod;
+  rod.radius = 0.002;
+  rod.linearDensity = 0.01;
+  const Vec3 pivot(0, 3, 0);
+  const Vec3 direction(std::sin(kSwing), -std::cos(kSwing), 0);
+  const double length = 1.0;
+  btRigidBody* ball = physics.addBody(std::make_unique<btSphereShape>(btScalar(kRadius)), kBall,
+                                      btTransform(btQuaternion::getIdentity(),
+                                                  bt(pivot + (length + kRadius) * direction)));
+  ball->setActivationState(DISABLE_DEACTIVATION);
+  RopeObject rope(Rod::fromSegment(rod, pivot, pivot + length * direction));
+  physics.ropes().addRope(rope);
+  rope.attachToPoint(0.0, bt(pivot));
+  rope.attachToBody(rope.rod().endParameter(), *ball, btVector3(btScalar(-kRadius * direction.x()),
+                                                                btScalar(-kRadius * direction.y()), 0));
+  // The small-swing period of the rope and ball as one rigid body about the pivot: the ball's centre
+  // at the arm L + r, its own inertia 2/5 M r^2 (it turns with the rope), the rope a uniform bar, and
+  // the finite amplitude (1 + theta0^2/16).
+  // The rope stretches under the ball's weight by the Green–Lagrange law T = (EA/2) g (g^2 - 1)
+  // (method eq. 13; 0.78 % here, which alone lengthens the period by 0.39 %).
+  const double ea = rope.rod().settings().axialStiffness(), tension = kBall * 9.81;
+  double gamma = 1.0 + tension / ea;
+  for (int i = 0; i < 50; ++i) gamma -= (0.5 * ea * gamma * (gamma * gamma - 1.0) - tension) / (0.5 * ea * (3.0 * gamma * gamma - 1.0));
+  const double arm = gamma * length + kRadius;
+  const double inertia = kBall * arm * arm + 0.4 * kBall * kRadius * kRadius + 0.01 * length * length / 3.0;
+  const double torque = (kBall * arm + 0.01 * length * length / 2.0) * 9.81;
+  Swing result;
+  result.expectedPeriod = 2.0 * kPi * std::sqrt(inertia / torque) * (1.0 + kSwing * kSwing / 16.0);
+  const auto angle = [&] {
+    const btVector3 c = ball->getCenterOfMassPosition();
+    return std::atan2(static_cast<double>(c.x()) - pivot.x(), pivot.y() - static_cast<double>(c.y()));
+  };
+  std::vector<double> crossings;
+  double previous = angle(), first = 0.0, last = 0.0;
+  const int steps = static_cast<int>(std::lround(seconds / h));
+  for (int i = 1; i <= steps; ++i) {
+    physics.world().stepSimulation(btScalar(h), 1, btScalar(h));
+    EXPECT_TRUE(rope.lastStep().ok) << rope.lastStep().failure;
+    const double now = angle();
+    if (previous < 0.0 && now >= 0.0) crossings.push_back((i - 1 + previous / (previous - now)) * h);
+    if (i * h <= result.expectedPeriod) first = std::max(first, std::abs(now));
+    if (i * h >= seconds - result.expectedPeriod) last = std::max(last, std::abs(now));
+    previous = now;
+  }
+  if (crossings.size() >= 2) result.period = (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  result.amplitudeKept = last / first;
+  return result;
+}
+
+void report(double h, const Swing& swing) {
+  std::printf("[bullet pendulum h=1/%.0f] keeps %.4f%% of the swing over 20 s, period %.6f s vs %.6f s (%.2e)\n",
+              1.0 / h, 100.0 * swing.amplitudeKept, swing.period, swing.expectedPeriod,
+              swing.period / swing.expectedPeriod - 1.0);
+}
+
+// Measured: 99.906 % of the swing kept, period 0.112 % long (the rod alone, rod_time_integration_test:
+// 99.994 % and 0.010 %; what is left is the coupling through the attachment, which Bullet's explicit
+// body update and the rope's implicit step share at backward Euler's weight). Backward Euler kept 69 %.
+TEST(BulletPendulum, KeepsItsSwingAndPeriodOverTwentySecondsAt240Hz) {
+  const double h = 1.0 / 240;
+  const Swing swing = swingInBullet(h, 20.0);
+  report(h, swing);
+  EXPECT_GE(swing.amplitudeKept, 0.98);
+  EXPECT_LE(swing.amplitudeKept, 1.0 + 1e-3);
+  EXPECT_LT(std::abs(swing.period / swing.expectedPeriod - 1.0), 1.5e-3);
+}
+
+// Open (label `open`, issue 15): at 1/60 s the coupled pendulum keeps 91.9 % (target 95 %) and its
+// period is 1.6 % long (target 0.1 %), although the rod alone keeps 99.65 % with the period within
+// 0.095 % at that step: the attachment's coupling to the explicit Bullet body is first order.
+TEST(BulletPendulum, KeepsItsSwingAndPeriodOverTwentySecondsAt60Hz) {
+  const double h = 1.0 / 60;
+  const Swing swing = swingInBullet(h, 20.0);
+  report(h, swing);
+  EXPECT_GE(swing.amplitudeKept, 0.95);
+  EXPECT_LT(std::abs(swing.period / swing.expectedPeriod - 1.0), 1e-3);
+}
+
+}  // namespace
+}  // namespace rope::bullet

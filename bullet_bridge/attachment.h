@@ -52,6 +52,20 @@ struct Attachment {
 // predicted to move on at v_p (p_new = p + h v_p), in Rod::addSpring's form (see contact_response.h).
 ContactSpring attachmentSpring(double stiffness, double damping, const Vec3& ropePoint, const Vec3& bodyPoint,
                                const Vec3& ropeVelocity, const Vec3& bodyVelocity, double h);
+// The same with 3x3 stiffness (N/m) and damping (N s/m), symmetric positive semidefinite.
+ContactSpring attachmentSpring(const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping, const Vec3& ropePoint,
+                               const Vec3& bodyPoint, const Vec3& ropeVelocity, const Vec3& bodyVelocity, double h);
+
+// The attachment spring on a dynamic body, capped for the body's explicit impulse: along each
+// principal direction of the point's inverse-mass matrix W (m/(N s^2): the velocity change of the
+// body point per unit impulse, W = I/m - [r]x I^-1 [r]x, r the arm from the centre of mass) the
+// stiffness is at most share / (h^2 lambda) and the damping share / (h lambda). Direction by direction
+// rather than with the smallest effective mass overall: a ball hanging from a point on its surface is
+// light sideways (it turns) but its full mass along the arm, which is where the load pulls (a 10 kg ball
+// at 1/240 s: 1e5 N/m kept along the rope instead of 4.1e4, so the ball sits 1 mm off the rope's end
+// rather than 2.4 mm). Uncapped, the result is exactly stiffness I and damping I.
+void capAttachmentForBody(const Eigen::Matrix3d& inverseMass, double h, double share, double stiffness,
+                          double damping, Eigen::Matrix3d& stiffnessOut, Eigen::Matrix3d& dampingOut);
 
 // The rope side of a clamp's rotational spring, on C'(s) in Rod::addTangentSpring's form: with g =
 // C'/l0' (the stretch times the unit tangent), d the body's direction turning at omega, and

@@ -238,15 +238,21 @@ void RopeObject::queueAttachments(double h) {
     const btVector3 point = body->getCenterOfMassTransform() * attachment.localPoint;
     const btVector3 arm = point - body->getCenterOfMassPosition();
     const Vec3 bodyVelocity = toVec(body->getVelocityInLocalPoint(arm));
-    double stiffness = attachment.settings.stiffness;
-    double damping = attachment.settings.damping;
+    Eigen::Matrix3d stiffness = attachment.settings.stiffness * Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d damping = attachment.settings.damping * Eigen::Matrix3d::Identity();
     if (dynamicBody(*body) != nullptr) {
-      // Smallest effective mass of the point over all directions (conservative bound).
-      const btVector3 inertia = body->getInvInertiaDiagLocal();
-      const double maxInverseInertia = static_cast<double>(std::max({inertia.x(), inertia.y(), inertia.z()}));
-      const double inverseMass =
-          static_cast<double>(body->getInvMass()) + static_cast<double>(arm.length2()) * maxInverseInertia;
-      capForBody(inverseMass, h, settings_.bodyStabilityFactor, stiffness, damping);
+      // The body point's inverse-mass matrix W = I/m - [r]x I^-1 [r]x, capped direction by direction.
+      const btMatrix3x3& inverseInertia = body->getInvInertiaTensorWorld();
+      Eigen::Matrix3d inertiaInverse;
+      for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) inertiaInverse(row, col) = static_cast<double>(inverseInertia[row][col]);
+      Eigen::Matrix3d cross;
+      const Vec3 r = toVec(arm);
+      cross << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+      const Eigen::Matrix3d inverseMass =
+          static_cast<double>(body->getInvMass()) * Eigen::Matrix3d::Identity() - cross * inertiaInverse * cross;
+      capAttachmentForBody(0.5 * (inverseMass + inverseMass.transpose()), h, settings_.bodyStabilityFactor,
+                           attachment.settings.stiffness, attachment.settings.damping, stiffness, damping);
     }
     PendingSpring pending;
     pending.s = attachment.s;

@@ -10,17 +10,37 @@
 #include <stdexcept>
 
 #include "demos/ropesim/progress.h"
+#include "demos/scene_file/built_in_scene_files.h"
+#include "demos/scene_file/file_scene.h"
+#include "demos/scene_file/junit_report.h"
+#include "demos/scene_file/scene_file_reader.h"
 #include "render/png_writer.h"
 #include "render/renderer.h"
 #include "render/video_writer.h"
 
 namespace rope::demos {
 
-RunStatistics runScene(const RopesimOptions& options) {
-  const SceneEntry* entry = findScene(options.scene);
-  if (entry == nullptr) throw std::runtime_error("unknown scene '" + options.scene + "'");
-  std::unique_ptr<DemoScene> scene = entry->create();
-  const double seconds = options.seconds.value_or(entry->defaultSeconds);
+RunStatistics runScene(const RopesimOptions& options, std::vector<CheckResult>* checks) {
+  const auto wallBegin = std::chrono::steady_clock::now();
+  std::unique_ptr<DemoScene> scene;
+  FileScene* fileScene = nullptr;
+  double defaultSeconds = 0.0;
+  std::optional<std::string> file = options.sceneFile;
+  if (!file) file = builtInSceneFile(options.scene);
+  if (file) {
+    std::vector<SceneOverride> overrides;
+    for (const std::string& text : options.overrides) overrides.push_back(parseSceneOverride(text));
+    auto built = std::make_unique<FileScene>(readSceneFile(*file, overrides), options.checks);
+    fileScene = built.get();
+    defaultSeconds = built->description().duration;
+    scene = std::move(built);
+  } else {
+    const SceneEntry* entry = findScene(options.scene);
+    if (entry == nullptr) throw std::runtime_error("unknown scene '" + options.scene + "'");
+    scene = entry->create();
+    defaultSeconds = entry->defaultSeconds;
+  }
+  const double seconds = options.seconds.value_or(defaultSeconds);
   const double h = scene->timeStep();
   // Frame k shows the state at t = k / fps; the video has exactly seconds * fps frames.
   const long frameCount = std::max(1L, std::lround(seconds * options.framesPerSecond));
@@ -98,6 +118,15 @@ RunStatistics runScene(const RopesimOptions& options) {
   if (video) video->close();
   if (renderer && renderSeconds > 0.0) statistics.setRenderFramesPerSecond(frameCount / renderSeconds);
 
+  if (fileScene != nullptr && options.checks) {
+    fileScene->finishChecks();
+    const std::vector<CheckResult>& results = fileScene->checks().results();
+    if (checks != nullptr) *checks = results;
+    if (options.junitFile) {
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallBegin).count();
+      writeJunitReport(*options.junitFile, options.scene, results, wall);
+    }
+  }
   if (options.statsFile) {
     std::ofstream file(*options.statsFile);
     file << statistics.toJson();

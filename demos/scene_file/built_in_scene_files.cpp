@@ -2,6 +2,8 @@
 #include "demos/scene_file/built_in_scene_files.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <system_error>
 
 namespace rope::demos {
 
@@ -10,7 +12,17 @@ const std::vector<std::string>& builtInSceneFileNames() {
   return names;
 }
 
-std::string builtInSceneDirectory() { return SPLINEROPE_SCENE_DIRECTORY; }
+std::string builtInSceneDirectory() {
+  // An installed ropesim (bin/ropesim) finds them in share/SplineRope/scenes beside it; one in the
+  // build tree in the source tree's demos/scenes.
+  std::error_code error;
+  const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const std::filesystem::path installed = executable.parent_path() / ".." / "share" / "SplineRope" / "scenes";
+    if (std::filesystem::is_directory(installed, error)) return installed.lexically_normal().string();
+  }
+  return SPLINEROPE_SCENE_DIRECTORY;
+}
 
 std::optional<std::string> builtInSceneFile(const std::string& name) {
   const std::vector<std::string>& names = builtInSceneFileNames();

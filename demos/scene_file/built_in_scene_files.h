@@ -14,7 +14,8 @@ namespace rope::demos {
 const std::vector<std::string>& builtInSceneFileNames();
 // The file of a built-in scene, or nullopt if that scene is built in C++ only.
 std::optional<std::string> builtInSceneFile(const std::string& name);
-// The directory holding them (the source tree's demos/scenes).
+// The directory holding them: share/SplineRope/scenes beside an installed ropesim, else the source
+// tree's demos/scenes.
 std::string builtInSceneDirectory();
 
 }  // namespace rope::demos

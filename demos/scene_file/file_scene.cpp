@@ -173,6 +173,15 @@ void FileScene::buildBody(const BodyDescription& body, std::size_t) {
     case BodyDescription::Shape::kPlane:
       shape = std::make_unique<btStaticPlaneShape>(toBullet(body.normal), static_cast<btScalar>(body.offset));
       break;
+    case BodyDescription::Shape::kMesh:
+      if (body.meshType == BodyDescription::MeshType::kConvexHull) {
+        auto hull = std::make_unique<btConvexHullShape>();
+        for (const Vec3& vertex : body.meshVertices) hull->addPoint(toBullet(vertex), false);
+        hull->setMargin(static_cast<btScalar>(body.margin));
+        hull->recalcLocalAabb();
+        shape = std::move(hull);
+      }
+      break;
   }
   btTransform transform;
   transform.setIdentity();
@@ -183,7 +192,17 @@ void FileScene::buildBody(const BodyDescription& body, std::size_t) {
     transform.setRotation(toBullet(body.rotation));
   }
   const double mass = body.motion == BodyDescription::Motion::kDynamic ? body.mass : 0.0;
-  btRigidBody* added = physics_.addBody(std::move(shape), mass, transform);
+  btRigidBody* added = nullptr;
+  if (shape) {
+    added = physics_.addBody(std::move(shape), mass, transform);
+  } else {  // a static triangle mesh (the reader allows no other)
+    auto mesh = std::make_unique<btTriangleMesh>();
+    for (const std::array<int, 3>& triangle : body.meshTriangles) {
+      mesh->addTriangle(toBullet(body.meshVertices[triangle[0]]), toBullet(body.meshVertices[triangle[1]]),
+                        toBullet(body.meshVertices[triangle[2]]));
+    }
+    added = physics_.addStaticMesh(std::move(mesh), transform);
+  }
   if (body.friction != 0.5) added->setFriction(static_cast<btScalar>(body.friction));
   added->setRestitution(static_cast<btScalar>(body.restitution));
   if (body.motion == BodyDescription::Motion::kKinematic) {

@@ -8,6 +8,7 @@
 // reuses (PhysicsWorld, the pile's coil, the knot region): it is a front end of ropesim, not part of
 // the installed libraries, so the library gains no JSON dependency.
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,7 +32,8 @@ struct Keyframe {
 };
 
 struct BodyDescription {
-  enum class Shape { kBox, kSphere, kCapsule, kCylinder, kPlane };
+  enum class Shape { kBox, kSphere, kCapsule, kCylinder, kPlane, kMesh };
+  enum class MeshType { kConvexHull, kTriangleMesh };
   enum class Motion { kStatic, kKinematic, kDynamic };
   std::string name;
   Shape shape = Shape::kBox;
@@ -41,6 +43,12 @@ struct BodyDescription {
   double height = 0.0;              // capsule: distance between the two hemisphere centres (y axis), m
   Vec3 normal{0.0, 1.0, 0.0};       // plane: unit normal
   double offset = 0.0;              // plane: n . x = offset, m
+  std::string mesh;                 // mesh: the OBJ file as the scene file names it
+  MeshType meshType = MeshType::kConvexHull;  // mesh: btConvexHullShape, or btBvhTriangleMeshShape (static)
+  double scale = 1.0;               // mesh: factor applied to the OBJ's coordinates
+  double margin = 0.0;              // convex hull: Bullet's collision margin around it, m
+  PointList meshVertices;           // mesh: read with the file (so a bad mesh stops before simulating), m
+  std::vector<std::array<int, 3>> meshTriangles;
   double mass = 0.0;                // dynamic: kg, > 0
   Vec3 position = Vec3::Zero();     // m
   Eigen::Vector4d rotation{0.0, 0.0, 0.0, 1.0};  // unit quaternion (x, y, z, w)

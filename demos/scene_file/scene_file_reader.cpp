@@ -2,12 +2,14 @@
 #include "demos/scene_file/scene_file_reader.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <set>
 #include <sstream>
 
 #include "demos/scene_file/json_fields.h"
+#include "demos/scene_file/obj_mesh.h"
 #include "rope/common/error.h"
 
 namespace rope::demos {
@@ -187,16 +189,49 @@ void forbid(const JsonFields& fields, const std::vector<std::string>& keys, cons
   }
 }
 
-BodyDescription readBody(const JsonFields& fields) {
+// The vertices and triangles of a body's OBJ file (relative paths: to the scene file's directory).
+void readBodyMesh(const JsonFields& fields, const std::string& directory, BodyDescription& body) {
+  body.mesh = fields.string("mesh");
+  body.meshType = fields.choice("meshType", {"convexHull", "triangleMesh"}, "convexHull") == "triangleMesh"
+                      ? BodyDescription::MeshType::kTriangleMesh
+                      : BodyDescription::MeshType::kConvexHull;
+  body.scale = fields.number("scale", 1.0);
+  requirePositiveKey(fields, "scale", body.scale);
+  body.margin = fields.number("margin", 0.0);
+  requireNonNegativeKey(fields, "margin", body.margin);
+  if (body.meshType == BodyDescription::MeshType::kTriangleMesh) forbid(fields, {"margin"}, "a triangle mesh");
+  if (body.meshType == BodyDescription::MeshType::kTriangleMesh && body.motion != BodyDescription::Motion::kStatic) {
+    throw SceneFileError(fields.pathOf("meshType"), jsonText(fields.at("meshType")),
+                         "a triangle mesh must be static (Bullet's btBvhTriangleMeshShape); use \"convexHull\"");
+  }
+  const std::filesystem::path path(body.mesh);
+  const std::string resolved = path.is_absolute() || directory.empty() ? body.mesh : (std::filesystem::path(directory) / path).string();
+  ObjMesh mesh;
+  try {
+    mesh = readObjMesh(resolved);
+  } catch (const std::runtime_error& error) {
+    throw SceneFileError(fields.pathOf("mesh"), jsonText(fields.at("mesh")), error.what());
+  }
+  for (Vec3& vertex : mesh.vertices) vertex *= body.scale;
+  body.meshVertices = std::move(mesh.vertices);
+  body.meshTriangles = std::move(mesh.triangles);
+}
+
+BodyDescription readBody(const JsonFields& fields, const std::string& directory) {
   BodyDescription body;
   body.name = fields.string("name");
-  const std::string shape = fields.choice("shape", {"box", "sphere", "capsule", "cylinder", "plane"}, "");
+  const std::string shape = fields.choice("shape", {"box", "sphere", "capsule", "cylinder", "plane", "mesh"}, "");
   const std::string motion = fields.choice("motion", {"static", "kinematic", "dynamic"}, "static");
   body.motion = motion == "dynamic" ? BodyDescription::Motion::kDynamic
                 : motion == "kinematic" ? BodyDescription::Motion::kKinematic
                                         : BodyDescription::Motion::kStatic;
   const std::string kind = "a " + shape;
-  if (shape == "box" || shape == "cylinder") {
+  if (shape != "mesh") forbid(fields, {"mesh", "meshType", "scale", "margin"}, kind);
+  if (shape == "mesh") {
+    body.shape = BodyDescription::Shape::kMesh;
+    forbid(fields, {"halfExtents", "radius", "height", "normal", "offset"}, kind);
+    readBodyMesh(fields, directory, body);
+  } else if (shape == "box" || shape == "cylinder") {
     body.shape = shape == "box" ? BodyDescription::Shape::kBox : BodyDescription::Shape::kCylinder;
     forbid(fields, {"radius", "height", "normal", "offset"}, kind);
     body.halfExtents = fields.vec3("halfExtents");
@@ -618,11 +653,12 @@ SceneDescription readSceneJson(const json& document, const std::string& file) {
     scene.cameraFollow = camera.string("follow", "");
   }
 
+  const std::string directory = file.empty() ? std::string() : std::filesystem::path(file).parent_path().string();
   Names names;
   for (const auto& [item, path] : fields.array("bodies")) {
     const JsonFields body(*item, path, "body");
     requireUniqueName(names.bodies, body, "body");
-    scene.bodies.push_back(readBody(body));
+    scene.bodies.push_back(readBody(body, directory));
   }
   for (const auto& [item, path] : fields.array("ropes")) {
     const JsonFields rope(*item, path, "rope");

@@ -155,6 +155,39 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
+// Meshes are read with the scene file, relative to its directory: a missing, empty or broken OBJ
+// stops before simulating.
+TEST(BadSceneFile, Meshes) {
+  const std::string empty = scratch("empty.obj"), broken = scratch("broken.obj"), cube = scratch("cube.obj");
+  std::ofstream(empty) << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  std::ofstream(broken) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
+  std::ofstream(cube) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n";
+  const auto name = [](const std::string& path) { return path.substr(path.find_last_of('/') + 1); };
+  const struct {
+    std::string body, message;
+  } cases[] = {
+      {R"({"name": "clip", "shape": "mesh", "mesh": "clip.obj"})", "bodies[0].mesh: \"clip.obj\", not found"},
+      {R"({"name": "clip", "shape": "mesh", "mesh": ")" + name(empty) + R"("})", "bodies[0].mesh: \"" + name(empty) + "\", has no triangles"},
+      {R"({"name": "clip", "shape": "mesh", "mesh": ")" + name(broken) + R"("})",
+       "bodies[0].mesh: \"" + name(broken) + "\", line 4: face index 7 with 3 vertices so far"},
+      {R"({"name": "clip", "shape": "mesh", "mesh": ")" + name(cube) + R"(", "meshType": "triangleMesh", "motion": "dynamic", "mass": 1})",
+       "bodies[0].meshType: \"triangleMesh\", a triangle mesh must be static"},
+      {R"({"name": "clip", "shape": "mesh", "mesh": ")" + name(cube) + R"(", "scale": 0})", "bodies[0].scale: 0, must be > 0"},
+      {R"({"name": "clip", "shape": "box", "halfExtents": [1, 1, 1], "mesh": ")" + name(cube) + R"("})",
+       "bodies[0].mesh: does not apply to a box"},
+  };
+  for (const auto& bad : cases) {
+    SCOPED_TRACE(bad.body);
+    const Outcome run = ropesim("run " + writeScene(scene(bad.body, kRope)));
+    EXPECT_EQ(run.status, 2) << run.err;
+    EXPECT_NE(run.err.find(bad.message), std::string::npos) << run.err;
+  }
+  // The same cube as a convex hull is fine.
+  const Outcome good = ropesim("run " + writeScene(scene(R"({"name": "clip", "shape": "mesh", "mesh": ")" + name(cube) + R"("})", kRope)) +
+                               " --seconds 0.01");
+  EXPECT_EQ(good.status, 0) << good.err;
+}
+
 TEST(BadSceneFile, MissingFile) {
   const Outcome run = ropesim("run /nonexistent/scene.json");
   EXPECT_EQ(run.status, 2);

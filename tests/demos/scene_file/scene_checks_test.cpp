@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <string>
 
@@ -277,6 +278,47 @@ TEST(SceneChecks, AWindowWithNoStepFails) {
   EXPECT_FALSE(late.passed);
   EXPECT_EQ(late.samples, 0);
   EXPECT_NE(late.message.find("not evaluated"), std::string::npos) << late.message;
+}
+
+}  // namespace
+}  // namespace rope::demos
+
+namespace rope::demos {
+namespace {
+
+// A 2 m x 0.2 m x 1 m slab as an OBJ file: 8 vertices, 6 quads (top face at y = 0).
+std::string writeSlab(const std::string& name) {
+  const std::string file = testing::TempDir() + "/" + name;
+  std::ofstream obj(file);
+  obj << "# slab\n";
+  for (const int x : {-1, 1}) {
+    for (const int y : {-2, 0}) {
+      for (const int z : {-1, 1}) obj << "v " << x << " " << 0.1 * y << " " << 0.5 * z << "\n";
+    }
+  }
+  // Vertex (x, y, z) index: 1 + 4 (x > 0) + 2 (y > -0.2) + (z > 0); faces wound outwards.
+  obj << "f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n";
+  return file;
+}
+
+// A rope laid on the slab's top face stays there, one radius above it (to the resting depth, about
+// half a micrometre: BulletRopeSettings::lineContactStiffness), whether Bullet sees the OBJ as a
+// triangle mesh or as a convex hull (margin 0).
+TEST(SceneFileMeshes, RopeRestsOnATriangleMeshAndAConvexHullFromObjFiles) {
+  const std::string slab = writeSlab("slab.obj");
+  for (const char* type : {"triangleMesh", "convexHull"}) {
+    SCOPED_TRACE(type);
+    FileScene scene(readSceneText(std::string(R"({
+      "bodies": [{"name": "slab", "shape": "mesh", "mesh": ")") + slab + R"(", "meshType": ")" + type + R"("}],
+      "ropes": [{"name": "rope", "shape": {"type": "segment", "from": [-0.5, 0.005, 0.013], "to": [0.5, 0.005, 0.013]}}],
+      "checks": [{"name": "rests on the slab", "type": "contact", "rope": "rope", "body": "slab", "mode": "stays", "from": 0.5},
+                 {"name": "shallow", "type": "penetration", "rope": "rope", "body": "slab", "max": 1e-5, "from": 0.5},
+                 {"name": "one radius above the top face", "type": "position", "rope": "rope", "s": 0.5,
+                  "target": [0, 0.005, 0.013], "max": 1e-5, "from": 0.5}]})"));
+    run(scene, 240);
+    for (const CheckResult& check : scene.checks().results()) EXPECT_TRUE(check.passed) << check.name << ": " << check.message;
+    EXPECT_EQ(result(scene, "rests on the slab").samples, 121);
+  }
 }
 
 }  // namespace

@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   int failed = 0;
   for (const CheckResult& check : checks) {
     std::printf("check %-40s %s\n", ("'" + check.name + "'").c_str(), check.message.c_str());
+    if (!check.snapshot.empty()) std::printf("      snapshot of its first failure (t = %.6g s): %s\n", check.firstFailureTime, check.snapshot.c_str());
     failed += check.passed ? 0 : 1;
   }
   if (!checks.empty()) std::printf("%zu checks, %d failed\n", checks.size(), failed);

@@ -98,12 +98,15 @@ RopesimOptions parseRopesimOptions(const std::vector<std::string>& arguments) {
       options.overrides.push_back(value());
     } else if (argument == "--junit" && options.sceneFile) {
       options.junitFile = value();
+    } else if (argument == "--snapshot-on-failure" && options.sceneFile) {
+      options.snapshotDirectory = value();
     } else if (argument == "--no-checks" && options.sceneFile) {
       options.checks = false;
     } else if (argument == "--quiet") {
       options.quiet = true;
     } else if (!argument.empty() && argument[0] == '-') {
-      fail(argument, "", options.sceneFile || (argument != "--set" && argument != "--junit" && argument != "--no-checks")
+      fail(argument, "", options.sceneFile || (argument != "--set" && argument != "--junit" && argument != "--no-checks" &&
+                                                  argument != "--snapshot-on-failure")
                              ? "unknown option (see --help)"
                              : "only with `ropesim run FILE.json`");
     } else if (options.sceneFile) {
@@ -118,6 +121,9 @@ RopesimOptions parseRopesimOptions(const std::vector<std::string>& arguments) {
   if (!options.help && options.scene.empty()) fail("scene", "", "missing (see --help)");
   if (!options.render && (options.video || options.framesDirectory)) {
     fail("--no-render", "", "cannot be combined with --out or --frames");
+  }
+  if (options.snapshotDirectory && !options.checks) {
+    fail("--snapshot-on-failure", *options.snapshotDirectory, "needs the checks (drop --no-checks)");
   }
   if (options.render && !options.video && !options.framesDirectory) {
     options.video = options.scene + ".mp4";
@@ -149,6 +155,7 @@ std::string ropesimUsage() {
           "  --set PATH=VALUE   run: override a key of the file, e.g. ropes[0].settings.youngsModulus=1e8\n"
           "  --junit FILE.xml   run: write the checks as a JUnit XML report\n"
           "  --no-checks        run: do not evaluate the file's checks\n"
+          "  --snapshot-on-failure DIR  run: a PNG of each check's first failing moment, marked\n"
           "  --help             this text\n";
   return text.str();
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "demos/ropesim/run_scene.h"
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "demos/scene_file/junit_report.h"
 #include "demos/scene_file/scene_file_reader.h"
 #include "render/png_writer.h"
+#include "render/primitive_mesh.h"
 #include "render/renderer.h"
 #include "render/video_writer.h"
 
@@ -63,6 +65,44 @@ RunStatistics runScene(const RopesimOptions& options, std::vector<CheckResult>* 
     }
   }
 
+  // --snapshot-on-failure: a picture of the moment a check first fails, what failed marked by a red
+  // sphere drawn over everything (an overlay), from the scene's camera (or the first frame's).
+  std::unique_ptr<render::Renderer> snapshotRenderer;
+  std::optional<render::Camera> frame0Camera;  // the automatic framing of the first frame, if rendered
+  auto snapshotFailures = [&]() {
+    if (fileScene == nullptr || !options.snapshotDirectory || fileScene->checks().newFailures().empty()) return;
+    render::Renderer* snapshots = renderer.get();
+    if (snapshots == nullptr) {
+      if (!snapshotRenderer) {
+        render::RenderSettings settings;
+        settings.width = options.width;
+        settings.height = options.height;
+        snapshotRenderer = std::make_unique<render::Renderer>(settings);
+      }
+      snapshots = snapshotRenderer.get();
+    }
+    std::filesystem::create_directories(*options.snapshotDirectory);
+    for (const std::size_t index : fileScene->checks().newFailures()) {
+      const CheckResult& check = fileScene->checks().results()[index];
+      render::Scene snapshotScene;
+      scene->draw(snapshotScene);
+      const render::Camera view = scene->camera().value_or(frame0Camera ? *frame0Camera : snapshots->frameScene(snapshotScene));
+      // 1.5 % of the viewing distance: visible at any zoom, small enough to point at a contact.
+      const double radius = 0.015 * (view.eye - view.target).norm();
+      Eigen::Isometry3d place = Eigen::Isometry3d::Identity();
+      place.translate(check.marker);
+      snapshotScene.add(std::make_shared<render::Mesh>(render::makeSphere(radius, 24)), place,
+                        render::Rgb(1.0f, 0.1f, 0.1f), render::Material::Overlay);
+      std::string name;
+      for (const char c : check.name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+      char prefix[16];
+      std::snprintf(prefix, sizeof prefix, "%02zu_", index);
+      const std::string file = (std::filesystem::path(*options.snapshotDirectory) / (prefix + name + ".png")).string();
+      render::writePng(file, snapshots->render(snapshotScene, view));
+      fileScene->checks().setSnapshot(index, file);
+    }
+  };
+
   RunStatistics statistics(options.scene);
   StepMeasurements latest = scene->measure();
   render::Scene drawList;
@@ -78,6 +118,7 @@ RunStatistics runScene(const RopesimOptions& options, std::vector<CheckResult>* 
     while (static_cast<double>(steps) * h < frameTime - 0.5 * h) {
       const auto begin = Clock::now();
       latest = scene->step();
+      snapshotFailures();
       const double micros = std::chrono::duration<double, std::micro>(Clock::now() - begin).count();
       ++steps;
       time = static_cast<double>(steps) * h;
@@ -94,6 +135,7 @@ RunStatistics runScene(const RopesimOptions& options, std::vector<CheckResult>* 
         camera = *own;
       } else if (frame == 0) {
         camera = renderer->frameScene(drawList);
+        frame0Camera = camera;
       }
       renderer->render(drawList, camera, image);
       renderSeconds += std::chrono::duration<double>(Clock::now() - begin).count();
@@ -110,6 +152,7 @@ RunStatistics runScene(const RopesimOptions& options, std::vector<CheckResult>* 
   while (static_cast<double>(steps) * h < seconds - 0.5 * h) {
     const auto begin = Clock::now();
     latest = scene->step();
+    snapshotFailures();
     const double micros = std::chrono::duration<double, std::micro>(Clock::now() - begin).count();
     ++steps;
     statistics.addStep(latest, micros, static_cast<double>(steps) * h);

@@ -50,6 +50,7 @@ class FileScene : public DemoScene {
   static double parameter(const bullet::RopeObject& rope, const RopeParameter& s);
 
   const SceneChecks& checks() const { return checks_; }
+  SceneChecks& checks() { return checks_; }
   // Ends the checks' evaluation (SceneChecks::finish) at the current time.
   void finishChecks() { checks_.finish(time()); }
 

@@ -51,6 +51,7 @@ std::string junitReport(const std::string& suite, const std::vector<CheckResult>
     }
     xml << "      <system-out>type=" << result.type << " worst=" << number(result.worst) << " unit=" << escape(result.unit)
         << " bound=\"" << escape(result.bound) << "\" time=" << number(result.worstTime) << " samples=" << result.samples
+        << " first_failure=" << number(result.firstFailureTime)
         << "</system-out>\n"
         << "    </testcase>\n";
   }

@@ -193,9 +193,49 @@ bool SceneChecks::measure(std::size_t i, const FileScene& scene, double& value) 
   return false;
 }
 
+Vec3 SceneChecks::marker(std::size_t i, const FileScene& scene) const {
+  const CheckDescription& check = checks_[i];
+  const bullet::RopeObject* rope = scene.findRope(check.rope);
+  const btRigidBody* body = scene.findBody(check.body);
+  const btVector3 local(static_cast<btScalar>(check.localPoint.x()), static_cast<btScalar>(check.localPoint.y()),
+                        static_cast<btScalar>(check.localPoint.z()));
+  if (check.kind == CheckDescription::Kind::kPenetration || (check.kind == CheckDescription::Kind::kContact && check.never)) {
+    // The deepest active contact with the body.
+    const bullet::RopeContactRecord* deepest = nullptr;
+    for (const bullet::RopeContactRecord& contact : rope->contacts()) {
+      if (contact.active && (body == nullptr || contact.body == body) && (deepest == nullptr || contact.depth > deepest->depth)) {
+        deepest = &contact;
+      }
+    }
+    if (deepest != nullptr) return fromBullet(deepest->point);
+  }
+  if (body != nullptr && (check.kind != CheckDescription::Kind::kPenetration || rope == nullptr)) {
+    return fromBullet(body->getWorldTransform() * local);
+  }
+  if (rope == nullptr) return Vec3::Zero();
+  const Rod& rod = rope->rod();
+  double s = 0.5 * (rod.beginParameter() + rod.endParameter());
+  if (check.s) {
+    s = FileScene::parameter(*rope, *check.s);
+  } else if (check.winch) {
+    s = *check.winch == bullet::RopeEnd::kBegin ? rod.beginParameter() : rod.endParameter();
+  } else if (!check.attachment.empty()) {
+    if (const std::optional<int> id = scene.attachmentId(check.rope, check.attachment)) {
+      for (const bullet::Attachment& attachment : rope->attachments()) {
+        if (attachment.id == *id) s = attachment.s;
+      }
+    }
+  } else if (check.kind == CheckDescription::Kind::kKnotLength) {
+    const KnotRegion region = knotRegion(*rope, scene.physics().ropes().lastReport());
+    if (region.found) s = 0.5 * (region.begin + region.end);
+  }
+  return rod.position(std::clamp(s, rod.beginParameter(), rod.endParameter()));
+}
+
 void SceneChecks::observe(const FileScene& scene) {
   const double t = scene.time();
   const double h = scene.timeStep();
+  newFailures_.clear();
   for (std::size_t i = 0; i < checks_.size(); ++i) {
     const CheckDescription& check = checks_[i];
     if (check.kind == CheckDescription::Kind::kHealth) {
@@ -217,6 +257,11 @@ void SceneChecks::observe(const FileScene& scene) {
     result.latest = value;
     ++result.samples;
     const double m = margin(check, value);
+    if (m < 0.0 && std::isnan(result.firstFailureTime)) {
+      result.firstFailureTime = t;
+      result.marker = marker(i, scene);
+      newFailures_.push_back(i);
+    }
     if (m < result.worstMargin) {
       result.worstMargin = m;
       result.worst = value;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "demos/scene_file/scene_description.h"
+#include "rope/common/types.h"
 
 namespace rope::demos {
 
@@ -28,6 +29,9 @@ struct CheckResult {
   double worstTime = std::numeric_limits<double>::quiet_NaN();  // s, first time the worst occurred
   double latest = std::numeric_limits<double>::quiet_NaN();     // value at the last evaluated step
   std::string message;      // one line for people: what failed, the worst value, when
+  double firstFailureTime = std::numeric_limits<double>::quiet_NaN();  // s, first step outside the bound
+  Vec3 marker = Vec3::Zero();  // m, world: what failed then (the deepest contact, the rope point, the body)
+  std::string snapshot;        // the PNG of that moment (ropesim --snapshot-on-failure), "" if none
 };
 
 class SceneChecks {
@@ -40,6 +44,9 @@ class SceneChecks {
   void finish(double endTime);
   const std::vector<CheckResult>& results() const { return results_; }
   bool passed() const;
+  // The checks that failed for the first time in the last observe() (indices into results()).
+  const std::vector<std::size_t>& newFailures() const { return newFailures_; }
+  void setSnapshot(std::size_t i, const std::string& file) { results_.at(i).snapshot = file; }
 
  private:
   struct State {
@@ -51,9 +58,12 @@ class SceneChecks {
   // The measured value of check i now, or false if it cannot be measured now (rope not there yet).
   bool measure(std::size_t i, const FileScene& scene, double& value);
   double margin(const CheckDescription& check, double value) const;
+  // Where check i fails now, for the picture of the failure (run only on a first failure).
+  Vec3 marker(std::size_t i, const FileScene& scene) const;
   std::vector<CheckDescription> checks_;
   std::vector<CheckResult> results_;
   std::vector<State> states_;
+  std::vector<std::size_t> newFailures_;
 };
 
 }  // namespace rope::demos

@@ -219,4 +219,21 @@ TEST(SceneFileVerdict, ExitStatusIsZeroWhenEveryCheckHoldsAndOneWhenOneFails) {
   EXPECT_NE(fails.out.find("FAILS"), std::string::npos) << fails.out;
 }
 
+TEST(SceneFileVerdict, SnapshotOfTheFirstFailure) {
+  const std::string dir = scratch("snapshots");
+  const std::string file = writeScene(R"({"duration": 0.2, "camera": {"eye": [1, 1, 2], "target": [0, 0, 0]},
+      "bodies": [{"name": "ball", "shape": "sphere", "radius": 0.1, "motion": "dynamic", "mass": 1}],
+      "checks": [{"name": "ball stays up", "type": "position", "body": "ball", "target": [0, 0, 0], "max": 0.05},
+                 {"name": "ball falls", "type": "position", "body": "ball", "at": 0.2, "box": {"min": [-1, -1, -1], "max": [1, 0, 1]}}]})");
+  const Outcome run = ropesim("run " + file + " --size 64x48 --snapshot-on-failure " + dir);
+  EXPECT_EQ(run.status, 1) << run.out << run.err;
+  // Only the failed check has a picture; it failed when the ball had fallen 5 cm (0.1 s).
+  const std::string png = read(dir + "/00_ball_stays_up.png");
+  ASSERT_GT(png.size(), 8u) << run.out;
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_EQ(read(dir + "/01_ball_falls.png"), "");
+  EXPECT_NE(run.out.find("snapshot of its first failure (t = 0.1 s): " + dir + "/00_ball_stays_up.png"), std::string::npos)
+      << run.out;
+}
+
 }  // namespace

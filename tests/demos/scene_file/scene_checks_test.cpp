@@ -181,15 +181,20 @@ TEST(SceneChecks, ContactAndPenetrationOfARopeOnABox) {
       {"name": "no deeper than 1 um", "type": "penetration", "rope": "rope", "max": 1e-6}
     ]})"));
   Extreme depth, contacts;
-  double firstContact = -1.0;
+  double firstContact = -1.0, firstDeep = -1.0;
+  btVector3 firstDeepPoint(0, 0, 0);
   run(scene, 240, [&](const FileScene& s) {
     double deepest = 0.0;
     int count = 0;
     for (const bullet::RopeContactRecord& contact : s.findRope("rope")->contacts()) {
       if (!contact.active) continue;
-      deepest = std::max(deepest, contact.depth);
+      if (contact.depth > deepest) {
+        deepest = contact.depth;
+        if (firstDeep < 0.0 && deepest > 1e-6) firstDeepPoint = contact.point;
+      }
       ++count;
     }
+    if (firstDeep < 0.0 && deepest > 1e-6) firstDeep = s.time();
     depth.add(deepest, s.time());
     contacts.add(count, s.time());
     if (count > 0 && firstContact < 0.0) firstContact = s.time();
@@ -211,6 +216,10 @@ TEST(SceneChecks, ContactAndPenetrationOfARopeOnABox) {
   EXPECT_DOUBLE_EQ(deep.worst, depth.value);
   EXPECT_DOUBLE_EQ(deep.worstTime, depth.time);
   EXPECT_GT(deep.worst, 1e-6);
+  // Its first failure, and the contact a snapshot marks: the deepest one of that step.
+  EXPECT_DOUBLE_EQ(deep.firstFailureTime, firstDeep);
+  EXPECT_EQ(deep.marker, Vec3(firstDeepPoint.x(), firstDeepPoint.y(), firstDeepPoint.z()));
+  EXPECT_TRUE(std::isnan(result(scene, "shallow").firstFailureTime));
 }
 
 TEST(SceneChecks, HealthCountsFailedSteps) {

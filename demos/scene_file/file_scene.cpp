@@ -162,6 +162,11 @@ FileScene::~FileScene() {
 }
 
 void FileScene::buildBody(const BodyDescription& body, std::size_t) {
+  if (body.shape == BodyDescription::Shape::kBulletFile) {
+    imports_.push_back(std::make_unique<BulletFileImport>(physics_.world(), body.file));
+    for (const auto& [name, rigidBody] : imports_.back()->bodies()) bodies_[body.name + "/" + name] = rigidBody;
+    return;
+  }
   std::unique_ptr<btCollisionShape> shape;
   switch (body.shape) {
     case BodyDescription::Shape::kBox: shape = std::make_unique<btBoxShape>(toBullet(body.halfExtents)); break;
@@ -182,6 +187,8 @@ void FileScene::buildBody(const BodyDescription& body, std::size_t) {
         shape = std::move(hull);
       }
       break;
+    case BodyDescription::Shape::kBulletFile:
+      break;  // imported above
   }
   btTransform transform;
   transform.setIdentity();

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bullet_bridge/rope_object.h"
+#include "demos/scene_file/bullet_file_import.h"
 #include "demos/scene_file/scene_checks.h"
 #include "demos/scene_file/scene_description.h"
 #include "demos/scenes/demo_scene.h"
@@ -79,6 +80,7 @@ class FileScene : public DemoScene {
 
   SceneDescription description_;
   PhysicsWorld physics_;
+  std::vector<std::unique_ptr<BulletFileImport>> imports_;  // after physics_: they leave its world first
   std::map<std::string, btRigidBody*> bodies_;
   std::vector<std::pair<btRigidBody*, std::vector<Keyframe>>> kinematicBodies_;
   std::vector<RopeEntry> ropes_;

@@ -32,7 +32,7 @@ struct Keyframe {
 };
 
 struct BodyDescription {
-  enum class Shape { kBox, kSphere, kCapsule, kCylinder, kPlane, kMesh };
+  enum class Shape { kBox, kSphere, kCapsule, kCylinder, kPlane, kMesh, kBulletFile };
   enum class MeshType { kConvexHull, kTriangleMesh };
   enum class Motion { kStatic, kKinematic, kDynamic };
   std::string name;
@@ -49,6 +49,8 @@ struct BodyDescription {
   double margin = 0.0;              // convex hull: Bullet's collision margin around it, m
   PointList meshVertices;           // mesh: read with the file (so a bad mesh stops before simulating), m
   std::vector<std::array<int, 3>> meshTriangles;
+  std::string file;                      // bulletFile: the .bullet file, resolved against the scene file's directory
+  std::vector<std::string> importedBodies;  // bulletFile: its bodies' names; the scene calls them "<name>/<body>"
   double mass = 0.0;                // dynamic: kg, > 0
   Vec3 position = Vec3::Zero();     // m
   Eigen::Vector4d rotation{0.0, 0.0, 0.0, 1.0};  // unit quaternion (x, y, z, w)

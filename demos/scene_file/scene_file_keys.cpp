@@ -12,7 +12,7 @@ const std::vector<SceneFileKeyTable>& sceneFileKeyTables() {
       {"scene", {"description", "gravity", "timeStep", "duration", "camera", "bodies", "ropes", "events", "checks"}},
       {"camera", {"eye", "target", "up", "verticalFovDegrees", "follow"}},
       {"body",
-       {"name", "shape", "motion", "halfExtents", "radius", "height", "normal", "offset", "mesh", "meshType", "scale", "margin", "mass", "position",
+       {"name", "shape", "motion", "halfExtents", "radius", "height", "normal", "offset", "mesh", "meshType", "scale", "margin", "file", "mass", "position",
         "rotation", "linearVelocity", "angularVelocity", "friction", "restitution", "keyframes"}},
       {"keyframe", {"time", "position", "rotation"}},
       {"rope", {"name", "settings", "shape", "pins", "attachments", "clamps", "winches", "showControlPolygon"}},

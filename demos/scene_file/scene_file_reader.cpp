@@ -8,8 +8,10 @@
 #include <set>
 #include <sstream>
 
+#include "demos/scene_file/bullet_file_import.h"
 #include "demos/scene_file/json_fields.h"
 #include "demos/scene_file/obj_mesh.h"
+#include "demos/scenes/physics_world.h"
 #include "rope/common/error.h"
 
 namespace rope::demos {
@@ -189,6 +191,12 @@ void forbid(const JsonFields& fields, const std::vector<std::string>& keys, cons
   }
 }
 
+// A file a scene file names: relative to the scene file's directory.
+std::string resolvePath(const std::string& path, const std::string& directory) {
+  return std::filesystem::path(path).is_absolute() || directory.empty() ? path
+                                                                         : (std::filesystem::path(directory) / path).string();
+}
+
 // The vertices and triangles of a body's OBJ file (relative paths: to the scene file's directory).
 void readBodyMesh(const JsonFields& fields, const std::string& directory, BodyDescription& body) {
   body.mesh = fields.string("mesh");
@@ -204,8 +212,7 @@ void readBodyMesh(const JsonFields& fields, const std::string& directory, BodyDe
     throw SceneFileError(fields.pathOf("meshType"), jsonText(fields.at("meshType")),
                          "a triangle mesh must be static (Bullet's btBvhTriangleMeshShape); use \"convexHull\"");
   }
-  const std::filesystem::path path(body.mesh);
-  const std::string resolved = path.is_absolute() || directory.empty() ? body.mesh : (std::filesystem::path(directory) / path).string();
+  const std::string resolved = resolvePath(body.mesh, directory);
   ObjMesh mesh;
   try {
     mesh = readObjMesh(resolved);
@@ -217,10 +224,33 @@ void readBodyMesh(const JsonFields& fields, const std::string& directory, BodyDe
   body.meshTriangles = std::move(mesh.triangles);
 }
 
+// A .bullet file: imported once into a scratch world now, so that a file that is not one stops
+// before simulating and the names of its bodies are known to attachments and checks.
+void readBulletFile(const JsonFields& fields, const std::string& directory, BodyDescription& body) {
+  body.file = resolvePath(fields.string("file"), directory);
+  try {
+    PhysicsWorld scratch;
+    const BulletFileImport import(scratch.world(), body.file);
+    for (const auto& [name, rigidBody] : import.bodies()) body.importedBodies.push_back(name);
+  } catch (const std::runtime_error& error) {
+    throw SceneFileError(fields.pathOf("file"), jsonText(fields.at("file")), error.what());
+  }
+}
+
 BodyDescription readBody(const JsonFields& fields, const std::string& directory) {
   BodyDescription body;
   body.name = fields.string("name");
-  const std::string shape = fields.choice("shape", {"box", "sphere", "capsule", "cylinder", "plane", "mesh"}, "");
+  const std::string shape = fields.choice("shape", {"box", "sphere", "capsule", "cylinder", "plane", "mesh", "bulletFile"}, "");
+  if (shape != "bulletFile") forbid(fields, {"file"}, "a " + shape);
+  if (shape == "bulletFile") {
+    // The file's bodies keep their own shapes, masses, poses and materials.
+    forbid(fields, {"motion", "halfExtents", "radius", "height", "normal", "offset", "mesh", "meshType", "scale", "margin",
+                    "mass", "position", "rotation", "linearVelocity", "angularVelocity", "friction", "restitution", "keyframes"},
+           "a bulletFile (its bodies are as the file has them)");
+    body.shape = BodyDescription::Shape::kBulletFile;
+    readBulletFile(fields, directory, body);
+    return body;
+  }
   const std::string motion = fields.choice("motion", {"static", "kinematic", "dynamic"}, "static");
   body.motion = motion == "dynamic" ? BodyDescription::Motion::kDynamic
                 : motion == "kinematic" ? BodyDescription::Motion::kKinematic
@@ -659,6 +689,9 @@ SceneDescription readSceneJson(const json& document, const std::string& file) {
     const JsonFields body(*item, path, "body");
     requireUniqueName(names.bodies, body, "body");
     scene.bodies.push_back(readBody(body, directory));
+    for (const std::string& imported : scene.bodies.back().importedBodies) {
+      names.bodies.insert(scene.bodies.back().name + "/" + imported);
+    }
   }
   for (const auto& [item, path] : fields.array("ropes")) {
     const JsonFields rope(*item, path, "rope");

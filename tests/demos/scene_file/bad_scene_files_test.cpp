@@ -166,7 +166,7 @@ TEST(BadSceneFile, Meshes) {
   const struct {
     std::string body, message;
   } cases[] = {
-      {R"({"name": "clip", "shape": "mesh", "mesh": "clip.obj"})", "bodies[0].mesh: \"clip.obj\", not found"},
+      {R"({"name": "clip", "shape": "mesh", "mesh": "nowhere.obj"})", "bodies[0].mesh: \"nowhere.obj\", not found"},
       {R"({"name": "clip", "shape": "mesh", "mesh": ")" + name(empty) + R"("})", "bodies[0].mesh: \"" + name(empty) + "\", has no triangles"},
       {R"({"name": "clip", "shape": "mesh", "mesh": ")" + name(broken) + R"("})",
        "bodies[0].mesh: \"" + name(broken) + "\", line 4: face index 7 with 3 vertices so far"},
@@ -186,6 +186,28 @@ TEST(BadSceneFile, Meshes) {
   const Outcome good = ropesim("run " + writeScene(scene(R"({"name": "clip", "shape": "mesh", "mesh": ")" + name(cube) + R"("})", kRope)) +
                                " --seconds 0.01");
   EXPECT_EQ(good.status, 0) << good.err;
+}
+
+// A .bullet file that is missing or is not one stops before simulating.
+TEST(BadSceneFile, BulletFiles) {
+  const std::string fake = scratch("fake.bullet");
+  std::ofstream(fake) << "this is not a Bullet file\n";
+  const std::string fakeName = fake.substr(fake.find_last_of('/') + 1);
+  const struct {
+    std::string body, message;
+  } cases[] = {
+      {R"({"name": "cell", "shape": "bulletFile", "file": "nowhere.bullet"})", "bodies[0].file: \"nowhere.bullet\", not found"},
+      {R"({"name": "cell", "shape": "bulletFile", "file": ")" + fakeName + R"("})",
+       "bodies[0].file: \"" + fakeName + "\", not a .bullet file (no BULLET header)"},
+      {R"({"name": "cell", "shape": "bulletFile", "file": ")" + fakeName + R"(", "mass": 2})",
+       "bodies[0].mass: does not apply to a bulletFile"},
+  };
+  for (const auto& bad : cases) {
+    SCOPED_TRACE(bad.body);
+    const Outcome run = ropesim("run " + writeScene(scene(bad.body, kRope)));
+    EXPECT_EQ(run.status, 2) << run.err;
+    EXPECT_NE(run.err.find(bad.message), std::string::npos) << run.err;
+  }
 }
 
 TEST(BadSceneFile, MissingFile) {

@@ -332,3 +332,42 @@ TEST(SceneFileMeshes, RopeRestsOnATriangleMeshAndAConvexHullFromObjFiles) {
 
 }  // namespace
 }  // namespace rope::demos
+
+namespace rope::demos {
+namespace {
+
+// A world a user built in code, dumped with Bullet's own serializer: a static shelf (named) and an
+// unnamed 1 kg ball above it.
+std::string writeBulletWorld(const std::string& name) {
+  PhysicsWorld world;
+  btRigidBody* shelf = world.addBox(btVector3(1.0, 0.1, 0.5), 0.0, btVector3(0, -0.1, 0));
+  world.addBody(std::make_unique<btSphereShape>(btScalar(0.05)), 1.0, btTransform(btQuaternion::getIdentity(), btVector3(0.8, 1.0, 0.3)));
+  btDefaultSerializer serializer;
+  serializer.registerNameForPointer(shelf, "shelf");
+  world.world().serialize(&serializer);
+  const std::string file = testing::TempDir() + "/" + name;
+  std::ofstream(file, std::ios::binary)
+      .write(static_cast<const char*>(static_cast<const void*>(serializer.getBufferPointer())), serializer.getCurrentBufferSize());
+  return file;
+}
+
+TEST(SceneFileBulletWorld, RopeOnAShelfImportedFromABulletFile) {
+  const std::string file = writeBulletWorld("cell.bullet");
+  FileScene scene(readSceneText(R"({
+    "bodies": [{"name": "cell", "shape": "bulletFile", "file": ")" + file + R"("}],
+    "ropes": [{"name": "rope", "shape": {"type": "segment", "from": [-0.5, 0.005, 0.013], "to": [0.5, 0.005, 0.013]}}],
+    "checks": [{"name": "rests on the shelf", "type": "contact", "rope": "rope", "body": "cell/shelf", "mode": "stays", "from": 0.5},
+               {"name": "shallow", "type": "penetration", "rope": "rope", "body": "cell/shelf", "max": 1e-5, "from": 0.5},
+               {"name": "one radius above the shelf", "type": "position", "rope": "rope", "s": 0.5,
+                "target": [0, 0.005, 0.013], "max": 1e-5, "from": 0.5},
+               {"name": "ball lands on the shelf", "type": "position", "body": "cell/body1", "at": 1.0,
+                "target": [0.8, 0.05, 0.3], "max": 0.002}]})"));
+  ASSERT_NE(scene.findBody("cell/shelf"), nullptr);
+  ASSERT_NE(scene.findBody("cell/body1"), nullptr);
+  EXPECT_EQ(scene.findBody("cell/shelf")->getWorldTransform().getOrigin(), btVector3(0, -0.1, 0));
+  run(scene, 240);
+  for (const CheckResult& check : scene.checks().results()) EXPECT_TRUE(check.passed) << check.name << ": " << check.message;
+}
+
+}  // namespace
+}  // namespace rope::demos

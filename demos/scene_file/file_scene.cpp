@@ -218,6 +218,9 @@ void FileScene::buildBody(const BodyDescription& body, std::size_t) {
     added->setActivationState(DISABLE_DEACTIVATION);
     if (!body.keyframes.empty()) kinematicBodies_.emplace_back(added, body.keyframes);
   } else if (body.motion == BodyDescription::Motion::kDynamic) {
+    // Awake throughout by default: a body the rope holds or pulls must not be put to sleep by Bullet
+    // while the rope's impulses are small (they do not wake it).
+    if (!body.canSleep) added->setActivationState(DISABLE_DEACTIVATION);
     added->setLinearVelocity(toBullet(body.linearVelocity));
     added->setAngularVelocity(toBullet(body.angularVelocity));
   }

@@ -58,6 +58,7 @@ struct BodyDescription {
   Vec3 angularVelocity = Vec3::Zero();           // rad/s (dynamic)
   double friction = 0.5;            // Bullet's body coefficient (combined with the rope's), >= 0
   double restitution = 0.0;         // >= 0
+  bool canSleep = false;            // dynamic: Bullet may deactivate it when it comes to rest
   std::vector<Keyframe> keyframes;  // kinematic bodies: the scripted pose over time
 };
 

@@ -13,7 +13,7 @@ const std::vector<SceneFileKeyTable>& sceneFileKeyTables() {
       {"camera", {"eye", "target", "up", "verticalFovDegrees", "follow"}},
       {"body",
        {"name", "shape", "motion", "halfExtents", "radius", "height", "normal", "offset", "mesh", "meshType", "scale", "margin", "file", "mass", "position",
-        "rotation", "linearVelocity", "angularVelocity", "friction", "restitution", "keyframes"}},
+        "rotation", "linearVelocity", "angularVelocity", "friction", "restitution", "canSleep", "keyframes"}},
       {"keyframe", {"time", "position", "rotation"}},
       {"rope", {"name", "settings", "shape", "pins", "attachments", "clamps", "winches", "showControlPolygon"}},
       {"rope.settings",

@@ -245,7 +245,8 @@ BodyDescription readBody(const JsonFields& fields, const std::string& directory)
   if (shape == "bulletFile") {
     // The file's bodies keep their own shapes, masses, poses and materials.
     forbid(fields, {"motion", "halfExtents", "radius", "height", "normal", "offset", "mesh", "meshType", "scale", "margin",
-                    "mass", "position", "rotation", "linearVelocity", "angularVelocity", "friction", "restitution", "keyframes"},
+                    "mass", "position", "rotation", "linearVelocity", "angularVelocity", "friction", "restitution",
+                    "canSleep", "keyframes"},
            "a bulletFile (its bodies are as the file has them)");
     body.shape = BodyDescription::Shape::kBulletFile;
     readBulletFile(fields, directory, body);
@@ -300,7 +301,10 @@ BodyDescription readBody(const JsonFields& fields, const std::string& directory)
   } else if (fields.has("mass")) {
     throw SceneFileError(fields.pathOf("mass"), jsonText(fields.at("mass")), "only a dynamic body has a mass");
   }
-  if (body.motion != BodyDescription::Motion::kDynamic) forbid(fields, {"linearVelocity", "angularVelocity"}, "a " + motion + " body");
+  if (body.motion != BodyDescription::Motion::kDynamic) {
+    forbid(fields, {"linearVelocity", "angularVelocity", "canSleep"}, "a " + motion + " body");
+  }
+  body.canSleep = fields.boolean("canSleep", false);
   if (body.motion != BodyDescription::Motion::kKinematic) forbid(fields, {"keyframes"}, "a " + motion + " body (only kinematic bodies follow keyframes)");
   body.position = fields.vec3("position", body.position);
   body.rotation = readRotation(fields, "rotation");

@@ -33,16 +33,8 @@ void atPath(const std::string& path, const std::function<void()>& call) {
   } catch (const SceneFileError&) {
     throw;
   } catch (const InvalidArgument& error) {
-    const std::string& parameter = error.parameter();
-    const std::string what = error.what();
-    std::string value, reason = what;
-    const std::size_t valueBegin = parameter.size() + 3;
-    const std::size_t colon = what.find(": ", valueBegin);
-    if (what.compare(0, valueBegin, parameter + " = ") == 0 && colon != std::string::npos) {
-      value = what.substr(valueBegin, colon - valueBegin);
-      reason = what.substr(colon + 2);
-    }
-    throw SceneFileError(path + "." + parameter, value, reason);
+    const LibraryErrorParts parts = splitLibraryError(error);
+    throw SceneFileError(path + "." + error.parameter(), parts.value, parts.reason);
   }
 }
 
@@ -81,11 +73,8 @@ PointList coilPoints(const RopeDescription& rope, const std::string& path) {
     for (const auto& name : names) {
       if (parameter == name[0]) parameter = name[1];
     }
-    const std::string what = error.what();
-    const std::size_t colon = what.find(": ", error.parameter().size() + 3);
-    const std::size_t valueBegin = error.parameter().size() + 3;
-    throw SceneFileError(path + "." + parameter, colon == std::string::npos ? "" : what.substr(valueBegin, colon - valueBegin),
-                         colon == std::string::npos ? what : what.substr(colon + 2));
+    const LibraryErrorParts parts = splitLibraryError(error);
+    throw SceneFileError(path + "." + parameter, parts.value, parts.reason);
   }
   // Moved only where asked, so that a coil at x = z = 0 is bitwise the pile scene's.
   for (Vec3& p : points) {
@@ -358,8 +347,9 @@ void FileScene::applyScript() {
     if (force) {
       // A force acts in the steps that start in [time, until); Bullet clears body forces after each
       // stepSimulation and a rope's load lasts one substep, so it is applied again every step.
-      if (t >= event.time - 0.5 * h && t < event.until - 0.5 * h && findRope(event.rope) != nullptr) applyEvent(event);
-      if (t >= event.time - 0.5 * h && t < event.until - 0.5 * h && !event.body.empty()) applyEvent(event);
+      // A force on a rope acts once the rope is there (a cut makes a new piece).
+      const bool active = t >= event.time - 0.5 * h && t < event.until - 0.5 * h;
+      if (active && (!event.body.empty() || findRope(event.rope) != nullptr)) applyEvent(event);
     } else if (!eventDone_[i] && t >= event.time - 0.5 * h) {
       eventDone_[i] = true;
       applyEvent(event);

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rope/common/error.h"
+
 namespace rope::demos {
 
 class SceneFileError : public std::runtime_error {
@@ -21,5 +23,18 @@ class SceneFileError : public std::runtime_error {
  private:
   std::string path_;
 };
+
+// The value and the reason of a library error, whose message is "<parameter> = <value>: <reason>"
+// (rope/common/error.h), to be told again at the file's JSON path.
+struct LibraryErrorParts {
+  std::string value, reason;
+};
+inline LibraryErrorParts splitLibraryError(const InvalidArgument& error) {
+  const std::string what = error.what();
+  const std::string prefix = error.parameter() + " = ";
+  const std::size_t colon = what.find(": ", prefix.size());
+  if (what.compare(0, prefix.size(), prefix) != 0 || colon == std::string::npos) return {"", what};
+  return {what.substr(prefix.size(), colon - prefix.size()), what.substr(colon + 2)};
+}
 
 }  // namespace rope::demos

@@ -30,15 +30,7 @@ void withLibraryChecks(const JsonFields& fields, const std::string& prefix, cons
     const std::string& parameter = error.parameter();
     std::string key = parameter;
     if (!prefix.empty() && key.rfind(prefix + ".", 0) == 0) key = key.substr(prefix.size() + 1);
-    // what() is "<parameter> = <value>: <reason>" (rope/common/error.h).
-    const std::string what = error.what();
-    std::string value, reason = what;
-    const std::size_t valueBegin = parameter.size() + 3;
-    const std::size_t colon = what.find(": ", valueBegin);
-    if (what.compare(0, valueBegin, parameter + " = ") == 0 && colon != std::string::npos) {
-      value = what.substr(valueBegin, colon - valueBegin);
-      reason = what.substr(colon + 2);
-    }
+    auto [value, reason] = splitLibraryError(error);
     const std::string base = key.substr(0, key.find_first_of(".["));
     if (fields.has(base)) {
       const std::string tail = key.substr(base.size());

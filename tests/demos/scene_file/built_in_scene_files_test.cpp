@@ -25,8 +25,9 @@ TEST_P(BuiltInSceneFile, GivesTheBuildersTrajectoryBitForBit) {
   const std::unique_ptr<DemoScene> built = entry->create();
   ASSERT_EQ(fromFile.timeStep(), built->timeStep());
   // About one simulated second (half for the pile, 7 ms a step): through the landing and the
-  // contacts; the cut to 1.5 s, past the cut at 1 s.
-  const int steps = name == "pile" ? 120 : name == "cut" ? 360 : 240;
+  // contacts; the cut to 1.5 s, past the cut at 1 s; the winch to 7.5 s, through lowering, hold and
+  // the start of the lift.
+  const int steps = name == "pile" ? 120 : name == "cut" ? 360 : name == "winch" ? 1800 : 240;
   std::vector<double> a, b;
   for (int i = 1; i <= steps; ++i) {
     fromFile.step();

@@ -84,6 +84,34 @@ PointList coilPoints(const RopeDescription& rope, const std::string& path) {
   return points;
 }
 
+// The Bullet shape of a body that is not a triangle mesh or a .bullet file (those: nullptr).
+std::unique_ptr<btCollisionShape> convexOrPlaneShape(const BodyDescription& body) {
+  std::unique_ptr<btCollisionShape> shape;
+  switch (body.shape) {
+    case BodyDescription::Shape::kBox: shape = std::make_unique<btBoxShape>(toBullet(body.halfExtents)); break;
+    case BodyDescription::Shape::kSphere: shape = std::make_unique<btSphereShape>(static_cast<btScalar>(body.radius)); break;
+    case BodyDescription::Shape::kCapsule:
+      shape = std::make_unique<btCapsuleShape>(static_cast<btScalar>(body.radius), static_cast<btScalar>(body.height));
+      break;
+    case BodyDescription::Shape::kCylinder: shape = std::make_unique<btCylinderShape>(toBullet(body.halfExtents)); break;
+    case BodyDescription::Shape::kPlane:
+      shape = std::make_unique<btStaticPlaneShape>(toBullet(body.normal), static_cast<btScalar>(body.offset));
+      break;
+    case BodyDescription::Shape::kMesh:
+      if (body.meshType == BodyDescription::MeshType::kConvexHull) {
+        auto hull = std::make_unique<btConvexHullShape>();
+        for (const Vec3& vertex : body.meshVertices) hull->addPoint(toBullet(vertex), false);
+        hull->setMargin(static_cast<btScalar>(body.margin));
+        hull->recalcLocalAabb();
+        shape = std::move(hull);
+      }
+      break;
+    case BodyDescription::Shape::kBulletFile:
+      break;  // imported above
+  }
+  return shape;
+}
+
 }  // namespace
 
 btTransform keyframePose(const std::vector<Keyframe>& keyframes, double t) {
@@ -120,7 +148,7 @@ FileScene::FileScene(SceneDescription description, bool checksEnabled)
       physics_(toBullet(description_.gravity)),
       checks_(description_.checks),
       checksEnabled_(checksEnabled) {
-  for (std::size_t i = 0; i < description_.bodies.size(); ++i) buildBody(description_.bodies[i], i);
+  for (const BodyDescription& body : description_.bodies) buildBody(body);
   for (std::size_t i = 0; i < description_.ropes.size(); ++i) buildRope(description_.ropes[i], i);
   eventDone_.assign(description_.events.size(), false);
   // What needs the built ropes: parameters of events and checks on ropes that exist from the start.
@@ -150,35 +178,13 @@ FileScene::~FileScene() {
   }
 }
 
-void FileScene::buildBody(const BodyDescription& body, std::size_t) {
+void FileScene::buildBody(const BodyDescription& body) {
   if (body.shape == BodyDescription::Shape::kBulletFile) {
     imports_.push_back(std::make_unique<BulletFileImport>(physics_.world(), body.file));
     for (const auto& [name, rigidBody] : imports_.back()->bodies()) bodies_[body.name + "/" + name] = rigidBody;
     return;
   }
-  std::unique_ptr<btCollisionShape> shape;
-  switch (body.shape) {
-    case BodyDescription::Shape::kBox: shape = std::make_unique<btBoxShape>(toBullet(body.halfExtents)); break;
-    case BodyDescription::Shape::kSphere: shape = std::make_unique<btSphereShape>(static_cast<btScalar>(body.radius)); break;
-    case BodyDescription::Shape::kCapsule:
-      shape = std::make_unique<btCapsuleShape>(static_cast<btScalar>(body.radius), static_cast<btScalar>(body.height));
-      break;
-    case BodyDescription::Shape::kCylinder: shape = std::make_unique<btCylinderShape>(toBullet(body.halfExtents)); break;
-    case BodyDescription::Shape::kPlane:
-      shape = std::make_unique<btStaticPlaneShape>(toBullet(body.normal), static_cast<btScalar>(body.offset));
-      break;
-    case BodyDescription::Shape::kMesh:
-      if (body.meshType == BodyDescription::MeshType::kConvexHull) {
-        auto hull = std::make_unique<btConvexHullShape>();
-        for (const Vec3& vertex : body.meshVertices) hull->addPoint(toBullet(vertex), false);
-        hull->setMargin(static_cast<btScalar>(body.margin));
-        hull->recalcLocalAabb();
-        shape = std::move(hull);
-      }
-      break;
-    case BodyDescription::Shape::kBulletFile:
-      break;  // imported above
-  }
+  std::unique_ptr<btCollisionShape> shape = convexOrPlaneShape(body);
   btTransform transform;
   transform.setIdentity();
   if (body.motion == BodyDescription::Motion::kKinematic && !body.keyframes.empty()) {

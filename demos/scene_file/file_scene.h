@@ -72,7 +72,7 @@ class FileScene : public DemoScene {
     WinchDescription winch;
     bool started = false;
   };
-  void buildBody(const BodyDescription& body, std::size_t index);
+  void buildBody(const BodyDescription& body);
   void buildRope(const RopeDescription& rope, std::size_t index);
   void applyScript();  // events, keyframes and winches due before the next step
   void applyEvent(const EventDescription& event);

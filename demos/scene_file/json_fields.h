@@ -36,7 +36,8 @@ class JsonFields {
   std::string string(const std::string& key, const std::string& fallback) const;
   Vec3 vec3(const std::string& key) const;  // required, [x, y, z]
   Vec3 vec3(const std::string& key, const Vec3& fallback) const;
-  // A string out of `choices`; anything else names the choices.
+  // A string out of `choices` (an empty fallback: the key is required); anything else is an error
+  // that lists the choices.
   std::string choice(const std::string& key, const std::vector<std::string>& choices, const std::string& fallback) const;
   // An array (absent: empty); the items are returned with their paths "key[i]".
   std::vector<std::pair<const nlohmann::json*, std::string>> array(const std::string& key) const;

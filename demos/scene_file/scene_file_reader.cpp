@@ -229,25 +229,10 @@ void readBulletFile(const JsonFields& fields, const std::string& directory, Body
   }
 }
 
-BodyDescription readBody(const JsonFields& fields, const std::string& directory) {
-  BodyDescription body;
-  body.name = fields.string("name");
-  const std::string shape = fields.choice("shape", {"box", "sphere", "capsule", "cylinder", "plane", "mesh", "bulletFile"}, "");
-  if (shape != "bulletFile") forbid(fields, {"file"}, "a " + shape);
-  if (shape == "bulletFile") {
-    // The file's bodies keep their own shapes, masses, poses and materials.
-    forbid(fields, {"motion", "halfExtents", "radius", "height", "normal", "offset", "mesh", "meshType", "scale", "margin",
-                    "mass", "position", "rotation", "linearVelocity", "angularVelocity", "friction", "restitution",
-                    "canSleep", "keyframes"},
-           "a bulletFile (its bodies are as the file has them)");
-    body.shape = BodyDescription::Shape::kBulletFile;
-    readBulletFile(fields, directory, body);
-    return body;
-  }
-  const std::string motion = fields.choice("motion", {"static", "kinematic", "dynamic"}, "static");
-  body.motion = motion == "dynamic" ? BodyDescription::Motion::kDynamic
-                : motion == "kinematic" ? BodyDescription::Motion::kKinematic
-                                        : BodyDescription::Motion::kStatic;
+// The geometry of a body of `shape` (not a bulletFile): its sizes, its mesh or its plane; the keys
+// of the other shapes are errors.
+void readShapeGeometry(const JsonFields& fields, const std::string& shape, const std::string& directory,
+                       BodyDescription& body) {
   const std::string kind = "a " + shape;
   if (shape != "mesh") forbid(fields, {"mesh", "meshType", "scale", "margin"}, kind);
   if (shape == "mesh") {
@@ -287,6 +272,28 @@ BodyDescription readBody(const JsonFields& fields, const std::string& directory)
     body.normal.normalize();
     body.offset = fields.number("offset", 0.0);
   }
+}
+
+BodyDescription readBody(const JsonFields& fields, const std::string& directory) {
+  BodyDescription body;
+  body.name = fields.string("name");
+  const std::string shape = fields.choice("shape", {"box", "sphere", "capsule", "cylinder", "plane", "mesh", "bulletFile"}, "");
+  if (shape != "bulletFile") forbid(fields, {"file"}, "a " + shape);
+  if (shape == "bulletFile") {
+    // The file's bodies keep their own shapes, masses, poses and materials.
+    forbid(fields, {"motion", "halfExtents", "radius", "height", "normal", "offset", "mesh", "meshType", "scale", "margin",
+                    "mass", "position", "rotation", "linearVelocity", "angularVelocity", "friction", "restitution",
+                    "canSleep", "keyframes"},
+           "a bulletFile (its bodies are as the file has them)");
+    body.shape = BodyDescription::Shape::kBulletFile;
+    readBulletFile(fields, directory, body);
+    return body;
+  }
+  const std::string motion = fields.choice("motion", {"static", "kinematic", "dynamic"}, "static");
+  body.motion = motion == "dynamic" ? BodyDescription::Motion::kDynamic
+                : motion == "kinematic" ? BodyDescription::Motion::kKinematic
+                                        : BodyDescription::Motion::kStatic;
+  readShapeGeometry(fields, shape, directory, body);
   if (body.motion == BodyDescription::Motion::kDynamic) {
     body.mass = fields.number("mass");
     requirePositiveKey(fields, "mass", body.mass);
@@ -500,6 +507,42 @@ EventDescription readEvent(const JsonFields& fields, Names& names) {
   return event;
 }
 
+// A position check: a rope point (rope and s) or a body point, in a box or near a target, over the
+// window or at one time.
+void readPositionCheck(const JsonFields& fields, CheckDescription& check) {
+  const std::string kind = "a position check";
+  check.kind = CheckDescription::Kind::kPosition;
+  forbid(fields, {"attachment", "winch", "mode", "min"}, kind);
+  if (check.rope.empty() == check.body.empty()) throw SceneFileError(fields.path(), "", "a position check needs either 'rope' (with 's') or 'body'");
+  if (!check.rope.empty()) {
+    forbid(fields, {"localPoint"}, "the position of a rope point");
+    check.s = readParameter(fields, "s");
+  } else {
+    forbid(fields, {"s"}, "the position of a body");
+    check.localPoint = fields.vec3("localPoint", Vec3::Zero());
+  }
+  if (fields.has("at")) {
+    check.at = readTime(fields, "at", 0.0);
+    forbid(fields, {"from", "to"}, "a position check at one time ('at')");
+  }
+  if (fields.has("box") == fields.has("target")) throw SceneFileError(fields.path(), "", "a position check needs either 'box' or 'target'");
+  if (fields.has("box")) {
+    forbid(fields, {"max"}, "a position check in a box");
+    const JsonFields box(fields.at("box"), fields.pathOf("box"), "box");
+    check.boxMin = box.vec3("min");
+    check.boxMax = box.vec3("max");
+    for (int i = 0; i < 3; ++i) {
+      if (!((*check.boxMax)[i] >= (*check.boxMin)[i])) {
+        throw SceneFileError(box.pathOf("max") + "[" + std::to_string(i) + "]", jsonText(box.at("max")[i]), "must be >= min");
+      }
+    }
+  } else {
+    check.target = fields.vec3("target");
+    if (!check.max) fields.at("max");
+    requireNonNegativeKey(fields, "max", *check.max);
+  }
+}
+
 CheckDescription readCheck(const JsonFields& fields, const Names& names, std::set<std::string>& checkNames) {
   CheckDescription check;
   check.path = fields.path();
@@ -554,35 +597,7 @@ CheckDescription readCheck(const JsonFields& fields, const Names& names, std::se
       throw SceneFileError(fields.pathOf("max"), jsonText(fields.at("max")), "must be >= 'min'");
     }
   } else if (type == "position") {
-    check.kind = CheckDescription::Kind::kPosition;
-    forbid(fields, {"attachment", "winch", "mode", "min"}, kind);
-    if (check.rope.empty() == check.body.empty()) throw SceneFileError(fields.path(), "", "a position check needs either 'rope' (with 's') or 'body'");
-    if (!check.rope.empty()) {
-      forbid(fields, {"localPoint"}, "the position of a rope point");
-      check.s = readParameter(fields, "s");
-    } else {
-      forbid(fields, {"s"}, "the position of a body");
-      check.localPoint = fields.vec3("localPoint", Vec3::Zero());
-    }
-    if (fields.has("at")) {
-      check.at = readTime(fields, "at", 0.0);
-      forbid(fields, {"from", "to"}, "a position check at one time ('at')");
-    }
-    if (fields.has("box") == fields.has("target")) throw SceneFileError(fields.path(), "", "a position check needs either 'box' or 'target'");
-    if (fields.has("box")) {
-      forbid(fields, {"max"}, "a position check in a box");
-      const JsonFields box(fields.at("box"), fields.pathOf("box"), "box");
-      check.boxMin = box.vec3("min");
-      check.boxMax = box.vec3("max");
-      for (int i = 0; i < 3; ++i) {
-        if (!((*check.boxMax)[i] >= (*check.boxMin)[i])) {
-          throw SceneFileError(box.pathOf("max") + "[" + std::to_string(i) + "]", jsonText(box.at("max")[i]), "must be >= min");
-        }
-      }
-    } else {
-      check.target = fields.vec3("target");
-      needMax();
-    }
+    readPositionCheck(fields, check);
   } else if (type == "slip") {
     check.kind = CheckDescription::Kind::kSlip;
     forbid(fields, {"at", "attachment", "s", "winch", "mode", "min", "box", "target"}, kind);

@@ -52,7 +52,20 @@ RopesimOptions parseRopesimOptions(const std::vector<std::string>& arguments) {
     options.help = true;
     return options;
   }
-  for (std::size_t i = 0; i < arguments.size(); ++i) {
+  std::size_t first = 0;
+  if (arguments[0] == "run") {
+    if (arguments.size() < 2 || arguments[1].empty() || arguments[1][0] == '-') {
+      fail("run", "", "needs a scene file: ropesim run FILE.json [options]");
+    }
+    options.sceneFile = arguments[1];
+    const std::string& file = arguments[1];
+    const std::size_t slash = file.find_last_of('/');
+    std::string stem = slash == std::string::npos ? file : file.substr(slash + 1);
+    if (stem.size() > 5 && stem.compare(stem.size() - 5, 5, ".json") == 0) stem.resize(stem.size() - 5);
+    options.scene = stem;
+    first = 2;
+  }
+  for (std::size_t i = first; i < arguments.size(); ++i) {
     const std::string& argument = arguments[i];
     auto value = [&]() -> const std::string& {
       if (i + 1 >= arguments.size()) fail(argument, "", "needs a value");
@@ -81,10 +94,23 @@ RopesimOptions parseRopesimOptions(const std::vector<std::string>& arguments) {
       options.render = false;
     } else if (argument == "--stats") {
       options.statsFile = value();
+    } else if (argument == "--set" && options.sceneFile) {
+      options.overrides.push_back(value());
+    } else if (argument == "--junit" && options.sceneFile) {
+      options.junitFile = value();
+    } else if (argument == "--snapshot-on-failure" && options.sceneFile) {
+      options.snapshotDirectory = value();
+    } else if (argument == "--no-checks" && options.sceneFile) {
+      options.checks = false;
     } else if (argument == "--quiet") {
       options.quiet = true;
     } else if (!argument.empty() && argument[0] == '-') {
-      fail(argument, "", "unknown option (see --help)");
+      fail(argument, "", options.sceneFile || (argument != "--set" && argument != "--junit" && argument != "--no-checks" &&
+                                                  argument != "--snapshot-on-failure")
+                             ? "unknown option (see --help)"
+                             : "only with `ropesim run FILE.json`");
+    } else if (options.sceneFile) {
+      fail("run", argument, "only one scene file per run");
     } else if (options.scene.empty()) {
       if (findScene(argument) == nullptr) fail("scene", argument, "unknown scene (see --help)");
       options.scene = argument;
@@ -96,6 +122,9 @@ RopesimOptions parseRopesimOptions(const std::vector<std::string>& arguments) {
   if (!options.render && (options.video || options.framesDirectory)) {
     fail("--no-render", "", "cannot be combined with --out or --frames");
   }
+  if (options.snapshotDirectory && !options.checks) {
+    fail("--snapshot-on-failure", *options.snapshotDirectory, "needs the checks (drop --no-checks)");
+  }
   if (options.render && !options.video && !options.framesDirectory) {
     options.video = options.scene + ".mp4";
   }
@@ -104,8 +133,11 @@ RopesimOptions parseRopesimOptions(const std::vector<std::string>& arguments) {
 
 std::string ropesimUsage() {
   std::ostringstream text;
-  text << "usage: ropesim <scene> [options]\n\n"
-          "Runs a SplineRope scene, renders it headless (OSMesa) and writes an H.264 video.\n\n"
+  text << "usage: ropesim <scene> [options]\n"
+          "       ropesim run FILE.json [--set PATH=VALUE]... [--junit FILE.xml] [--no-checks] [options]\n\n"
+          "Runs a SplineRope scene, renders it headless (OSMesa) and writes an H.264 video.\n"
+          "`run` reads the scene from a scene file (docs/scene-files.md) and evaluates its checks: exit\n"
+          "status 0 when every check holds, 1 when one fails, 2 for a bad file or command line.\n\n"
           "scenes:\n";
   for (const SceneEntry& entry : sceneCatalogue()) {
     text << "  " << entry.name << std::string(entry.name.size() < 10 ? 10 - entry.name.size() : 1, ' ')
@@ -120,6 +152,10 @@ std::string ropesimUsage() {
           "  --no-render        simulate and measure only\n"
           "  --stats FILE.json  write run statistics as one JSON object\n"
           "  --quiet            no progress output\n"
+          "  --set PATH=VALUE   run: override a key of the file, e.g. ropes[0].settings.youngsModulus=1e8\n"
+          "  --junit FILE.xml   run: write the checks as a JUnit XML report\n"
+          "  --no-checks        run: do not evaluate the file's checks\n"
+          "  --snapshot-on-failure DIR  run: a PNG of each check's first failing moment, marked\n"
           "  --help             this text\n";
   return text.str();
 }

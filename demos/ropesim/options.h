@@ -9,7 +9,12 @@
 namespace rope::demos {
 
 struct RopesimOptions {
-  std::string scene;                 // a name from sceneCatalogue()
+  std::string scene;                 // a name from sceneCatalogue(), or the scene file's name (run)
+  std::optional<std::string> sceneFile;  // `ropesim run FILE.json`: the scene file (docs/scene-files.md)
+  std::vector<std::string> overrides;    // run: --set PATH=VALUE, in order
+  std::optional<std::string> junitFile;  // run: --junit FILE.xml
+  bool checks = true;                    // run: --no-checks skips evaluating the file's checks
+  std::optional<std::string> snapshotDirectory;  // run: --snapshot-on-failure DIR
   std::optional<std::string> video;  // --out FILE.mp4 (default: <scene>.mp4 unless --no-render or --frames)
   std::optional<std::string> framesDirectory;  // --frames DIR: one PNG per frame
   std::optional<double> seconds;     // --seconds S, simulated seconds (default: the scene's)

@@ -288,6 +288,10 @@ std::string shownDefault(const std::string& option, const demos::RopesimOptions&
   if (option == "--stats") return optional(parsed.statsFile);
   if (option == "--quiet") return flag(parsed.quiet);
   if (option == "--help") return flag(parsed.help);
+  if (option == "--set") return parsed.overrides.empty() ? "none" : parsed.overrides.front();
+  if (option == "--junit") return optional(parsed.junitFile);
+  if (option == "--no-checks") return flag(!parsed.checks);
+  if (option == "--snapshot-on-failure") return optional(parsed.snapshotDirectory);
   return "(no rule in user_guide_test.cpp for " + option + ")";
 }
 

@@ -10,6 +10,7 @@
 #                        directory holding only those modules' .pc files: a system without the others.
 #   BUILD_PARALLEL       build jobs for the consumer (default 1: tests run side by side)
 #   RUN                  name of the consumer's program to run after building (empty: do not run)
+#   RUN_CTEST            true: run the consumer's ctest after building (every test must pass)
 #   EXPECT_CONFIGURE_FAILURE  regular expression: the configure step must fail with a message
 #                        matching it, white space collapsed to single spaces (nothing is built)
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -89,4 +90,7 @@ endif()
 run_step("build consumer" ${CMAKE_COMMAND} --build "${WORK_DIR}/build" --parallel ${BUILD_PARALLEL})
 if(RUN)
   run_step("run consumer" "${WORK_DIR}/build/${RUN}")
+endif()
+if(RUN_CTEST)
+  run_step("ctest consumer" ${CMAKE_CTEST_COMMAND} --output-on-failure)
 endif()

@@ -120,6 +120,9 @@ void readRopeSettings(const JsonFields& fields, RodSettings& rod, bullet::Bullet
   rod.massDamping = fields.number("massDamping", rod.massDamping);
   rod.stiffnessDamping = fields.number("stiffnessDamping", rod.stiffnessDamping);
   rod.gravity = fields.vec3("gravity", rod.gravity);
+  rod.timeIntegrator = fields.choice("timeIntegrator", {"bdf2", "backwardEuler"}, "bdf2") == "backwardEuler"
+                           ? TimeIntegrator::kBackwardEuler
+                           : TimeIntegrator::kBdf2;
   rod.degree = fields.integer("degree", rod.degree);
   rod.initialControlPoints = fields.integer("initialControlPoints", rod.initialControlPoints);
   rod.stretchingQuadrature = fields.choice("stretchingQuadrature", {"lockingFree", "exact"}, "lockingFree") == "exact"

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "bullet_bridge/attachment.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <Eigen/Geometry>
 #include <algorithm>
 
@@ -26,25 +26,17 @@ ContactSpring attachmentSpring(const Eigen::Matrix3d& stiffness, const Eigen::Ma
   return spring;
 }
 
-void capAttachmentForBody(const Eigen::Matrix3d& inverseMass, double h, double share, double stiffness,
-                          double damping, Eigen::Matrix3d& stiffnessOut, Eigen::Matrix3d& dampingOut) {
-  stiffnessOut = stiffness * Eigen::Matrix3d::Identity();
-  dampingOut = damping * Eigen::Matrix3d::Identity();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inverseMass);
-  if (solver.info() != Eigen::Success) return;
-  const Vec3 lambda = solver.eigenvalues();
-  Vec3 k, c;
-  bool capped = false;
-  for (int i = 0; i < 3; ++i) {
-    // Stability of the body's explicit side along eigendirection i: k lambda h^2 <= share (capForBody).
-    k[i] = lambda[i] > 0.0 ? std::min(stiffness, share / (h * h * lambda[i])) : stiffness;
-    c[i] = lambda[i] > 0.0 ? std::min(damping, share / (h * lambda[i])) : damping;
-    capped = capped || k[i] < stiffness || c[i] < damping;
-  }
-  if (!capped) return;
-  const Eigen::Matrix3d& q = solver.eigenvectors();
-  stiffnessOut = q * k.asDiagonal() * q.transpose();
-  dampingOut = q * c.asDiagonal() * q.transpose();
+void seriesWithBody(ContactSpring& spring, const Eigen::Matrix3d& inverseMass, double h) {
+  // A = I + (h^2 K + h C) W; f = A^-1 (f0 - h K du - C du) keeps Rod::addSpring's form with every term
+  // premultiplied by A^-1 (K and C are multiples of the identity, so A^-1 K stays symmetric).
+  const Eigen::Matrix3d a = Eigen::Matrix3d::Identity() + (h * h * spring.stiffness + h * spring.damping) * inverseMass;
+  const Eigen::Matrix3d inverse = a.inverse();
+  spring.force = inverse * spring.force;
+  spring.stiffness = inverse * spring.stiffness;
+  spring.damping = inverse * spring.damping;
+  // Symmetrise away round-off: the rope's system needs exactly symmetric blocks.
+  spring.stiffness = 0.5 * (spring.stiffness + spring.stiffness.transpose()).eval();
+  spring.damping = 0.5 * (spring.damping + spring.damping.transpose()).eval();
 }
 
 ContactSpring attachmentSpring(double stiffness, double damping, const Vec3& ropePoint, const Vec3& bodyPoint,

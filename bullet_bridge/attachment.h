@@ -5,7 +5,7 @@
 //    (Rod::addSpring with K = k I, D = c I, the body's predicted motion in f0 as for contacts), and the
 //    equal and opposite impulse on the body, so a heavy body on a light rope (mass ratio 1000:1 and
 //    more) stays stable: the light side is implicit, the heavy side sees the rope's finite stiffness.
-//    The stiffness is capped on light bodies like a contact (contact_response.h: capForBody).
+//    On a dynamic body the spring acts in series with the body's inertia (seriesWithBody).
 //  * clamped to a rigid body (a weld: RopeObject::clampToBody): the point spring above, plus a
 //    rotational spring that holds the rope's tangent at s along a direction fixed in the body. On the
 //    rope it is implicit (Rod::addTangentSpring on C'(s)/l0'(s), stiffness k_r P, P = I - d d^T the
@@ -56,16 +56,18 @@ ContactSpring attachmentSpring(double stiffness, double damping, const Vec3& rop
 ContactSpring attachmentSpring(const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping, const Vec3& ropePoint,
                                const Vec3& bodyPoint, const Vec3& ropeVelocity, const Vec3& bodyVelocity, double h);
 
-// The attachment spring on a dynamic body, capped for the body's explicit impulse: along each
-// principal direction of the point's inverse-mass matrix W (m/(N s^2): the velocity change of the
-// body point per unit impulse, W = I/m - [r]x I^-1 [r]x, r the arm from the centre of mass) the
-// stiffness is at most share / (h^2 lambda) and the damping share / (h lambda). Direction by direction
-// rather than with the smallest effective mass overall: a ball hanging from a point on its surface is
-// light sideways (it turns) but its full mass along the arm, which is where the load pulls (a 10 kg ball
-// at 1/240 s: 1e5 N/m kept along the rope instead of 4.1e4, so the ball sits 1 mm off the rope's end
-// rather than 2.4 mm). Uncapped, the result is exactly stiffness I and damping I.
-void capAttachmentForBody(const Eigen::Matrix3d& inverseMass, double h, double share, double stiffness,
-                          double damping, Eigen::Matrix3d& stiffnessOut, Eigen::Matrix3d& dampingOut);
+// The attachment spring to a dynamic body, with the body's response made implicit: the body point's
+// velocity changes by W (-f h) when the rope pulls with f (W = I/m - [r]x I^-1 [r]x, m/(N s^2), the
+// point's inverse-mass matrix, r the arm from the centre of mass), and f is the spring's force at the
+// end of the step with the body point where that impulse takes it:
+//   f = -k (x_new - p - h v_p') - c (u_new - v_p'),  v_p' = v_p - h W f
+// which is the spring of attachmentSpring() premultiplied by A^-1, A = I + (h^2 k + h c) W: a spring in
+// series with the body's inertia. The rope's side stays implicit and the body gets exactly -f h, so no
+// stiffness cap is needed for stability (a contact's explicit impulse needs capForBody), and a heavy
+// load hangs off the rope by its weight / stiffness, not by a capped stiffness: a 10 kg ball on the
+// default 1e5 N/m at 1/60 s sits 3.7 mm off the rope's end where a capped spring let it sag 1.1 cm.
+// W = 0 (a static or kinematic body) leaves the spring as it is.
+void seriesWithBody(ContactSpring& spring, const Eigen::Matrix3d& inverseMass, double h);
 
 // The rope side of a clamp's rotational spring, on C'(s) in Rod::addTangentSpring's form: with g =
 // C'/l0' (the stretch times the unit tangent), d the body's direction turning at omega, and

@@ -134,6 +134,7 @@ void RopeObject::leaveWorld() {
   proxies_->removeFromWorld();
   bodyContacts_.reset();
   world_ = nullptr;
+  bodyAttachmentCounts_ = nullptr;  // the RopeWorld owns the counts
   contacts_.clear();
 }
 
@@ -224,6 +225,17 @@ void RopeObject::substep(const std::vector<const btCollisionObject*>& candidates
   endSubstep(h);
 }
 
+int RopeObject::attachmentsOn(const btRigidBody* body) const {
+  if (bodyAttachmentCounts_ != nullptr && !bodyAttachmentCounts_->empty()) {
+    const auto found = std::lower_bound(bodyAttachmentCounts_->begin(), bodyAttachmentCounts_->end(),
+                                        std::pair<const btRigidBody*, int>(body, 0));
+    if (found != bodyAttachmentCounts_->end() && found->first == body) return std::max(1, found->second);
+  }
+  int count = 0;
+  for (const Attachment& attachment : attachments_) count += attachment.body == body ? 1 : 0;
+  return std::max(1, count);
+}
+
 void RopeObject::queueAttachments(double h) {
   for (std::size_t i = 0; i < attachments_.size(); ++i) {
     Attachment& attachment = attachments_[i];
@@ -238,10 +250,13 @@ void RopeObject::queueAttachments(double h) {
     const btVector3 point = body->getCenterOfMassTransform() * attachment.localPoint;
     const btVector3 arm = point - body->getCenterOfMassPosition();
     const Vec3 bodyVelocity = toVec(body->getVelocityInLocalPoint(arm));
-    Eigen::Matrix3d stiffness = attachment.settings.stiffness * Eigen::Matrix3d::Identity();
-    Eigen::Matrix3d damping = attachment.settings.damping * Eigen::Matrix3d::Identity();
+    PendingSpring pending;
+    pending.s = attachment.s;
+    pending.velocity = rod_.velocity(attachment.s);
+    pending.spring = attachmentSpring(attachment.settings.stiffness, attachment.settings.damping,
+                                      rod_.position(attachment.s), toVec(point), pending.velocity, bodyVelocity, h);
     if (dynamicBody(*body) != nullptr) {
-      // The body point's inverse-mass matrix W = I/m - [r]x I^-1 [r]x, capped direction by direction.
+      // The body point's inverse-mass matrix W = I/m - [r]x I^-1 [r]x: the spring acts in series with it.
       const btMatrix3x3& inverseInertia = body->getInvInertiaTensorWorld();
       Eigen::Matrix3d inertiaInverse;
       for (int row = 0; row < 3; ++row)
@@ -251,14 +266,9 @@ void RopeObject::queueAttachments(double h) {
       cross << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
       const Eigen::Matrix3d inverseMass =
           static_cast<double>(body->getInvMass()) * Eigen::Matrix3d::Identity() - cross * inertiaInverse * cross;
-      capAttachmentForBody(0.5 * (inverseMass + inverseMass.transpose()), h, settings_.bodyStabilityFactor,
-                           attachment.settings.stiffness, attachment.settings.damping, stiffness, damping);
+      const double sharing = static_cast<double>(attachmentsOn(body));
+      seriesWithBody(pending.spring, (0.5 * sharing) * (inverseMass + inverseMass.transpose()), h);
     }
-    PendingSpring pending;
-    pending.s = attachment.s;
-    pending.velocity = rod_.velocity(attachment.s);
-    pending.spring = attachmentSpring(stiffness, damping, rod_.position(attachment.s), toVec(point), pending.velocity,
-                                      bodyVelocity, h);
     pending.body = dynamicBody(*body);
     pending.point = point;
     pending.attachment = static_cast<int>(i);

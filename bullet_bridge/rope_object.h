@@ -193,6 +193,9 @@ class RopeObject {
     lastStep_.maxSelfOverlap = maxOverlap;
     nearRopes_ = near;
   }
+  void shareBodyAttachmentCounts(const std::vector<std::pair<const btRigidBody*, int>>* counts) {
+    bodyAttachmentCounts_ = counts;
+  }
   void enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld);
   void leaveWorld();
   // ---- failure handling inside a RopeWorld substep (rope_object_failures.cpp) ----
@@ -250,6 +253,11 @@ class RopeObject {
   std::vector<RopeContactRecord> contacts_;
   std::vector<RopeAttachmentRecord> attachmentLoads_;
   RopeStepRecord lastStep_;
+  // How many body attachments (of all ropes in the RopeWorld) pull on each body, sorted by body; set
+  // by the RopeWorld each substep (empty: count this rope's own). seriesWithBody takes the body's
+  // response N times as large for N attachments, so parallel ropes on one body do not overshoot.
+  const std::vector<std::pair<const btRigidBody*, int>>* bodyAttachmentCounts_ = nullptr;
+  int attachmentsOn(const btRigidBody* body) const;
   bool nearRopes_ = false;  // rope-rope candidates last substep: the next one restarts BDF2
   std::vector<PendingSpring> pending_;
   Rod::LoadQueue userLoads_;  // what the user queued on the rod for this substep

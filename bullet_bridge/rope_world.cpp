@@ -130,6 +130,24 @@ void RopeWorld::substep(double h) {
   }
   findCandidates();
   startReport(h);
+  // Body attachments per body over all ropes (seriesWithBody shares the body among them).
+  bodyAttachmentCounts_.clear();
+  for (const RopeObject* rope : ropes_) {
+    for (const Attachment& attachment : rope->attachments()) {
+      if (attachment.body != nullptr) bodyAttachmentCounts_.emplace_back(attachment.body, 1);
+    }
+  }
+  std::sort(bodyAttachmentCounts_.begin(), bodyAttachmentCounts_.end());
+  std::size_t unique = 0;
+  for (std::size_t i = 0; i < bodyAttachmentCounts_.size(); ++i) {
+    if (unique > 0 && bodyAttachmentCounts_[unique - 1].first == bodyAttachmentCounts_[i].first) {
+      ++bodyAttachmentCounts_[unique - 1].second;
+    } else {
+      bodyAttachmentCounts_[unique++] = bodyAttachmentCounts_[i];
+    }
+  }
+  bodyAttachmentCounts_.resize(unique);
+  for (RopeObject* rope : ropes_) rope->shareBodyAttachmentCounts(&bodyAttachmentCounts_);
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     RopeObject& rope = *ropes_[r];
     // Bodies removed from the world (perhaps deleted) since the last substep lose their attachments

@@ -108,6 +108,7 @@ class RopeWorld {
   std::unique_ptr<Action> action_;
   std::vector<RopeObject*> ropes_;
   std::vector<std::vector<const btCollisionObject*>> candidates_;  // per rope, scratch
+  std::vector<std::pair<const btRigidBody*, int>> bodyAttachmentCounts_;  // per substep, sorted by body
   std::vector<RopeCapsulePair> capsulePairs_;                       // scratch
   std::vector<RopeCapsulePair> sortedPairs_;                        // scratch of sortCapsulePairs
   std::vector<int> pairBuckets_, ropeOffsets_;                     // scratch of sortCapsulePairs

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 
 #include <cmath>
 #include <limits>
@@ -191,29 +190,30 @@ TEST(Attachment, SpringMatchesTheSpringLaw) {
   EXPECT_LT((endOfStepForce(spring, u, uNew, h) - expected).norm(), 1e-9);
 }
 
-// The cap for a body's explicit update acts direction by direction: along each eigenvector of the
-// point's inverse-mass matrix W the stiffness is min(k, share / (h^2 lambda)) (and the damping
-// min(c, share / (h lambda))); a heavy direction keeps k; uncapped it is exactly k I and c I.
-TEST(Attachment, BodyCapActsAlongEachPrincipalDirectionOfTheInverseMass) {
-  const double k = 1e5, c = 50.0, h = 1.0 / 60, share = 0.25;
-  Eigen::Matrix3d stiffness, damping;
-  // A ball of 10 kg, radius 5 cm, held at a point 5 cm above its centre: W = I/m - [r]x I^-1 [r]x.
-  const double m = 10.0, inertia = 0.4 * m * 0.05 * 0.05;
-  Eigen::Matrix3d w = Eigen::Matrix3d::Identity() / m;
-  w(0, 0) += 0.05 * 0.05 / inertia;  // sideways, the ball turns: 0.35 m/(N s^2)
-  w(2, 2) += 0.05 * 0.05 / inertia;
-  capAttachmentForBody(w, h, share, k, c, stiffness, damping);
-  EXPECT_NEAR(stiffness(1, 1), share * m / (h * h), 1e-6);  // along the arm: the full 10 kg, 9000 N/m
-  EXPECT_NEAR(stiffness(0, 0), share / (h * h * 0.35), 1e-6);
-  EXPECT_NEAR(damping(1, 1), std::min(c, share * m / h), 1e-9);
-  EXPECT_NEAR(stiffness(0, 1), 0.0, 1e-9);
-  // Every direction within the stability bound: the eigenvalues of K W never exceed share / h^2.
-  const Eigen::EigenSolver<Eigen::Matrix3d> product(stiffness * w);
-  for (int i = 0; i < 3; ++i) EXPECT_LE(product.eigenvalues()[i].real(), share / (h * h) * (1.0 + 1e-12));
-  // A heavy body at a short step: no cap, exactly the settings.
-  capAttachmentForBody(Eigen::Matrix3d::Identity() / 1000.0, 1.0 / 240, share, k, c, stiffness, damping);
-  EXPECT_EQ(stiffness, k * Eigen::Matrix3d::Identity());
-  EXPECT_EQ(damping, c * Eigen::Matrix3d::Identity());
+// In series with the body: the end-of-step force is the spring's at the body point moved by the
+// body's own response to that force, v_p' = v_p - h W f; W = 0 leaves the spring unchanged.
+TEST(Attachment, SeriesWithBodyIsTheSpringAtTheBodysRespondedPosition) {
+  const double k = 1e5, c = 50.0, h = 1.0 / 60;
+  const Vec3 x(0, 1, 0), p(0, 1.002, 0.001), u(0.1, 0, 0), vp(0, -0.2, 0.05);
+  // A ball of 10 kg, radius 5 cm, held at a point 5 cm above its centre: light sideways (it turns).
+  Eigen::Matrix3d w = Eigen::Matrix3d::Identity() / 10.0;
+  w(0, 0) += 0.05 * 0.05 / (0.4 * 10.0 * 0.05 * 0.05);
+  w(2, 2) = w(0, 0);
+  w(0, 2) = w(2, 0) = 0.01;
+  ContactSpring spring = attachmentSpring(k, c, x, p, u, vp, h);
+  seriesWithBody(spring, w, h);
+  EXPECT_LT((spring.stiffness - spring.stiffness.transpose()).norm(), 1e-9 * spring.stiffness.norm());
+  const Vec3 uNew(0.05, 0.3, -0.1);
+  const Vec3 f = endOfStepForce(spring, u, uNew, h);
+  const Vec3 vpNew = vp - h * (w * f);
+  const Vec3 expected = -k * ((x + h * uNew) - (p + h * vpNew)) - c * (uNew - vpNew);
+  EXPECT_LT((f - expected).norm(), 1e-9 * expected.norm());
+  // A static body (W = 0): exactly the spring of attachmentSpring.
+  ContactSpring fixed = attachmentSpring(k, c, x, p, u, vp, h);
+  const ContactSpring before = fixed;
+  seriesWithBody(fixed, Eigen::Matrix3d::Zero(), h);
+  EXPECT_EQ(fixed.force, before.force);
+  EXPECT_EQ(fixed.stiffness, before.stiffness);
 }
 
 }  // namespace

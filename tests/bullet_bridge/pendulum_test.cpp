@@ -85,11 +85,10 @@ void report(double h, const Swing& swing) {
               swing.period / swing.expectedPeriod - 1.0);
 }
 
-// Measured: 99.949 % of the swing kept, period 0.047 % long (the rod alone, rod_time_integration_test:
-// 99.994 % and 0.010 %; the rest is the attachment: its spring, 1e5 N/m, holds the ball 1 mm off the
-// rope's end, and Bullet's explicit body update shares the coupling). Backward Euler kept 69 %; with
-// the attachment capped by the ball's smallest effective mass (before capAttachmentForBody) 99.906 %
-// and 0.112 %.
+// Measured: 99.944 % of the swing kept, period 0.058 % long (the rod alone, rod_time_integration_test:
+// 99.994 % and 0.010 %; the rest is the attachment, whose spring acts in series with the ball's inertia,
+// seriesWithBody). Backward Euler kept 69 %; with the attachment capped by the ball's smallest
+// effective mass instead (before seriesWithBody) 99.906 % and 0.112 %.
 TEST(BulletPendulum, KeepsItsSwingAndPeriodOverTwentySecondsAt240Hz) {
   const double h = 1.0 / 240;
   const Swing swing = swingInBullet(h, 20.0);
@@ -99,10 +98,10 @@ TEST(BulletPendulum, KeepsItsSwingAndPeriodOverTwentySecondsAt240Hz) {
   EXPECT_LT(std::abs(swing.period / swing.expectedPeriod - 1.0), 1e-3);
 }
 
-// Open (label `open`, issue 15): at 1/60 s the coupled pendulum keeps 98.4 % of its swing (target
-// 95 %: met) but its period is 0.33 % long (target 0.1 %), although the rod alone is within 0.095 % at
-// that step: the attachment spring is capped at bodyStabilityFactor m / h^2 = 9000 N/m along the rope
-// for the ball's explicit update, so the ball hangs 1.1 cm lower than the rope's end.
+// Open (label `open`, issue 15): at 1/60 s the coupled pendulum keeps 99.60 % of its swing (target
+// 95 %: met) but its period is 0.133 % long (target 0.1 %; the rod alone: 0.095 %): the attachment's
+// spring in series with the ball's inertia at h = 1/60 s is 2.6e4 N/m, so the ball hangs 3.7 mm below
+// the rope's end. (Capped for an explicit body update it was 98.4 % and 0.33 %.)
 TEST(BulletPendulum, KeepsItsSwingAndPeriodOverTwentySecondsAt60Hz) {
   const double h = 1.0 / 60;
   const Swing swing = swingInBullet(h, 20.0);

@@ -63,9 +63,10 @@ class CapsuleProxies {
   // The broadphase filter of the object (in the world: its broadphase proxy's too).
   void setFilter(int group, int mask);
 
-  // Follows the rod's current knots (adds or removes capsules) and evaluates the capsule axes.
+  // Follows the rod's current knots (adds or removes capsules) and evaluates the capsule axes (the
+  // compound's children follow in updateBoxes).
   void rebuild(const Rod& rod);
-  // Rebuilds, then sets each capsule's tree leaf to cover the capsule now and after predictionTime
+  // Rebuilds, places the compound's capsule children, then sets each capsule's tree leaf to cover the capsule now and after predictionTime
   // (s) of the rod's current velocities, padded by margin (m), and the object's box to the tree's
   // root. A leaf Bullet would drop as too large (diagonal^2 >= 1e12 m^2, its "overflow in AABB"
   // rule) is not applied; the count is returned (all capsules if the whole rope's box is too large).

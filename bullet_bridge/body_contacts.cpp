@@ -118,7 +118,12 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
   }
   btRigidBody* body = dynamicBody(object);
   const std::size_t first = samples_.size();
-  for (int i = 0; i < proxies.size(); ++i) {
+  // Midphase: the capsules whose tree leaves (swept boxes, capsule_proxies.h) meet the body's box
+  // grown by its reach, in capsule order.
+  const btScalar grow = static_cast<btScalar>(bodyReach);
+  const btVector3 bodyGrow(grow, grow, grow);
+  proxies.capsulesOverlapping(handle->m_aabbMin - bodyGrow, handle->m_aabbMax + bodyGrow, nearCapsules_, treeStack_);
+  for (const int i : nearCapsules_) {
     const Capsule capsule = proxies.capsule(i);
     const CapsuleProxy& proxy = proxies.proxy(i);
     // Speculative distance: the configured margin plus what rope and body can close in this step,

@@ -97,6 +97,8 @@ class BodyContacts {
   LineContactSampler sampler_;
   std::vector<ContactSample> scratch_;
   std::vector<Contact> chordContacts_;
+  std::vector<int> nearCapsules_;  // gatherBody's midphase result
+  btNodeStack treeStack_;          // and its traversal stack
   std::vector<Sample> samples_;
   FrictionAnchors anchors_;
   // solveSlidingBounds' workspace: the sliding samples, their trial responses (3n each) and the

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "bullet_bridge/capsule_proxies.h"
 
+#include <LinearMath/btQuaternion.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -12,35 +14,76 @@ namespace {
 
 // Bullet's btCollisionWorld::updateSingleAabb disables objects whose box diagonal^2 reaches 1e12.
 constexpr double kBulletAabbLimit2 = 1e12;
+// A leaf is refitted only when the new swept box leaves it or it is more than twice this much larger
+// than the new box on some side; it is then stored this much fatter (fraction of the radius). A rope
+// at rest (or moving steadily) leaves its tree alone, and a leaf never stays much larger than needed.
+constexpr double kLeafSlack = 0.1;
+
+double diagonal2(const btVector3& lo, const btVector3& hi) {
+  const btVector3 d = hi - lo;
+  return static_cast<double>(d.x()) * d.x() + static_cast<double>(d.y()) * d.y() + static_cast<double>(d.z()) * d.z();
+}
 
 }  // namespace
 
 CapsuleProxies::CapsuleProxies(RopeObject& owner, int capsulesPerSpan, double radius)
-    : owner_(owner), capsulesPerSpan_(capsulesPerSpan), radius_(static_cast<btScalar>(radius)) {}
+    : owner_(owner),
+      capsulesPerSpan_(capsulesPerSpan),
+      radius_(static_cast<btScalar>(radius)),
+      shape_(std::make_unique<RopeShape>()),
+      object_(std::make_unique<btCollisionObject>()) {
+  object_->setCollisionShape(shape_.get());
+  object_->getWorldTransform().setIdentity();
+  // Drawn by the RopeWorld's debug drawer (rope_debug_draw.h), not a second time by Bullet's.
+  object_->setCollisionFlags(object_->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |
+                             btCollisionObject::CF_NO_CONTACT_RESPONSE |
+                             btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT);
+  object_->setUserPointer(&owner_);
+  object_->setUserIndex2(kRopeCapsuleTag);
+  // Always active, so Bullet's dispatcher hands every broadphase pair of the rope (against sleeping
+  // and static bodies too) to the rope's collision algorithm (rope_dispatch.h).
+  object_->setActivationState(DISABLE_DEACTIVATION);
+}
 
 CapsuleProxies::~CapsuleProxies() { removeFromWorld(); }
 
 void CapsuleProxies::addToWorld(btCollisionWorld& world, int group, int mask) {
   world_ = &world;
-  group_ = group;
-  mask_ = mask;
-  for (CapsuleProxy& proxy : proxies_) world.addCollisionObject(proxy.object.get(), group, mask);
+  world.addCollisionObject(object_.get(), group, mask);
 }
 
 void CapsuleProxies::removeFromWorld() {
   if (world_ == nullptr) return;
-  if (!orphaned()) {
-    for (CapsuleProxy& proxy : proxies_) world_->removeCollisionObject(proxy.object.get());
-  }
+  if (!orphaned()) world_->removeCollisionObject(object_.get());
   world_ = nullptr;
 }
 
-bool CapsuleProxies::orphaned() const {
-  if (world_ == nullptr || proxies_.empty()) return false;
-  for (const CapsuleProxy& proxy : proxies_) {
-    if (proxy.object->getBroadphaseHandle() != nullptr) return false;
-  }
-  return true;
+bool CapsuleProxies::orphaned() const { return world_ != nullptr && object_->getBroadphaseHandle() == nullptr; }
+
+void CapsuleProxies::setFilter(int group, int mask) {
+  if (world_ == nullptr || orphaned()) return;
+  // Out and in again: Bullet keeps the pairs a proxy already has when its filter bits change.
+  world_->removeCollisionObject(object_.get());
+  world_->addCollisionObject(object_.get(), group, mask);
+}
+
+void CapsuleProxies::addCapsule() {
+  capsuleShapes_.push_back(std::make_unique<RopeCapsuleShape>(radius_));
+  btTransform identity;
+  identity.setIdentity();
+  shape_->addChildShape(identity, capsuleShapes_.back().get());
+}
+
+void CapsuleProxies::placeCapsule(int i) {
+  const btVector3& a = axis_[static_cast<std::size_t>(i)];
+  const btVector3& b = axis_[static_cast<std::size_t>(i) + 1];
+  const btVector3 chord = b - a;
+  const btScalar length = chord.length();
+  btQuaternion rotation = btQuaternion::getIdentity();
+  // The capsule's local Y axis onto the chord (Bullet picks a perpendicular axis for a reversed one).
+  if (length > btScalar(0)) rotation = shortestArcQuat(btVector3(0, 1, 0), chord / length);
+  shape_->getChildTransform(i) = btTransform(rotation, (a + b) * btScalar(0.5));
+  capsuleShapes_[static_cast<std::size_t>(i)]->setHalfHeight(btScalar(0.5) * length);
 }
 
 void CapsuleProxies::rebuild(const Rod& rod) {
@@ -61,38 +104,26 @@ void CapsuleProxies::rebuild(const Rod& rod) {
   }
   const int count = static_cast<int>(ends.size()) - 1;
 
+  // Children leave and join at the end only, so child index = capsule index stays true.
   while (size() > count) {
-    if (world_ != nullptr) world_->removeCollisionObject(proxies_.back().object.get());
+    shape_->removeChildShapeByIndex(size() - 1);
+    capsuleShapes_.pop_back();
     proxies_.pop_back();
   }
   axis_.resize(ends.size());
   for (std::size_t i = 0; i < ends.size(); ++i) axis_[i] = toBullet(rod.position(ends[i]));
   while (size() < count) {
     CapsuleProxy proxy;
-    proxy.shape = std::make_unique<SweptBoxShape>();
-    proxy.object = std::make_unique<btCollisionObject>();
-    proxy.object->setCollisionShape(proxy.shape.get());
-    proxy.object->setCollisionFlags(proxy.object->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |
-                                    btCollisionObject::CF_NO_CONTACT_RESPONSE);
-    proxy.object->setUserPointer(&owner_);
-    proxy.object->setUserIndex(size());
-    proxy.object->setUserIndex2(kRopeCapsuleTag);
-    // Never "active" for Bullet (a static object asleep: no island ever wakes it, since it has no
-    // manifolds), so its dispatcher skips pairs of two rope capsules at once
-    // (btCollisionDispatcher::needsCollision); the bridge reads them from the pair cache itself.
-    // DISABLE_SIMULATION would say the same, but Bullet uses it to report an object it gave up on.
-    proxy.object->setActivationState(ISLAND_SLEEPING);
-    // A box covering the capsule now, so a capsule created mid-run is found before its first update.
-    const std::size_t i = proxies_.size();
-    btVector3 lo = axis_[i], hi = axis_[i];
-    lo.setMin(axis_[i + 1]);
-    hi.setMax(axis_[i + 1]);
-    const btVector3 pad(radius_, radius_, radius_);
-    proxy.shape->setHalfExtents((hi - lo) * btScalar(0.5) + pad);
-    proxy.object->getWorldTransform().setIdentity();
-    proxy.object->getWorldTransform().setOrigin((lo + hi) * btScalar(0.5));
-    if (world_ != nullptr) world_->addCollisionObject(proxy.object.get(), group_, mask_);
-    proxies_.push_back(std::move(proxy));
+    proxy.object = object_.get();
+    proxies_.push_back(proxy);
+    addCapsule();
+    placeCapsule(size() - 1);
+    // Its first leaf: the capsule's own box, so a capsule created mid-run is found before its first
+    // updateBoxes.
+    btVector3 lo, hi;
+    capsuleShapes_.back()->getAabb(shape_->getChildTransform(size() - 1), lo, hi);
+    btDbvtVolume box = btDbvtVolume::FromMM(lo, hi);
+    shape_->getDynamicAabbTree()->update(shape_->getChildList()[size() - 1].m_node, box);
   }
   for (int i = 0; i < count; ++i) {
     proxies_[static_cast<std::size_t>(i)].s0 = ends[static_cast<std::size_t>(i)];
@@ -103,41 +134,60 @@ void CapsuleProxies::rebuild(const Rod& rod) {
 int CapsuleProxies::updateBoxes(const Rod& rod, double predictionTime, double margin) {
   rebuild(rod);
   int overflows = 0;
-  std::vector<btVector3> predicted(axis_.size());
-  for (int i = 0; i <= size(); ++i) {
-    const double s = i < size() ? proxies_[static_cast<std::size_t>(i)].s0 : proxies_.back().s1;
-    predicted[static_cast<std::size_t>(i)] = axis_[static_cast<std::size_t>(i)] +
-                                             toBullet(rod.velocity(s) * predictionTime);
-  }
+  btDbvt& tree = *shape_->getDynamicAabbTree();
+  const btScalar slack = static_cast<btScalar>(kLeafSlack) * radius_;
+  const btVector3 slack3(slack, slack, slack);
   for (int i = 0; i < size(); ++i) {
-    CapsuleProxy& proxy = proxies_[static_cast<std::size_t>(i)];
+    // The compound's children follow here, not in every rebuild: only Bullet's queries read them,
+    // between steps (4 % of a 1000-rope step when placed twice per substep).
+    placeCapsule(i);
+    const CapsuleProxy& proxy = proxies_[static_cast<std::size_t>(i)];
     const btVector3& a = axis_[static_cast<std::size_t>(i)];
     const btVector3& b = axis_[static_cast<std::size_t>(i) + 1];
     // How far the curve bulges out of the chord: its midpoint's distance from the chord's midpoint.
     const btScalar bulge = (toBullet(rod.position(0.5 * (proxy.s0 + proxy.s1))) - (a + b) * btScalar(0.5)).length();
+    // How far the capsule can move in the step, in any direction (the body and rope-rope midphase
+    // test the chord's box grown by it: body_contacts.cpp, rope_rope_contact.cpp).
+    const double reach = predictionTime * std::max(rod.velocity(proxy.s0).norm(), rod.velocity(proxy.s1).norm());
+    const btScalar pad = radius_ + static_cast<btScalar>(margin + reach) + bulge;
     btVector3 lo = a, hi = a;
-    const btVector3* const corners[3] = {&b, &predicted[static_cast<std::size_t>(i)],
-                                         &predicted[static_cast<std::size_t>(i) + 1]};
-    for (const btVector3* p : corners) {
-      lo.setMin(*p);
-      hi.setMax(*p);
-    }
-    const btScalar pad = radius_ + static_cast<btScalar>(margin) + bulge;
+    lo.setMin(b);
+    hi.setMax(b);
     lo -= btVector3(pad, pad, pad);
     hi += btVector3(pad, pad, pad);
-    const btVector3 diagonal = hi - lo;
-    const double diagonal2 = static_cast<double>(diagonal.x()) * diagonal.x() +
-                             static_cast<double>(diagonal.y()) * diagonal.y() +
-                             static_cast<double>(diagonal.z()) * diagonal.z();
-    if (!std::isfinite(diagonal2) || diagonal2 >= kBulletAabbLimit2) {
-      ++overflows;  // keep the previous box: Bullet would take this object out of the simulation
+    const double d2 = diagonal2(lo, hi);
+    if (!std::isfinite(d2) || d2 >= kBulletAabbLimit2) {
+      ++overflows;  // keep the previous leaf: Bullet would take such an object out of the simulation
       continue;
     }
-    proxy.shape->setHalfExtents(diagonal * btScalar(0.5));
-    proxy.object->getWorldTransform().setOrigin((lo + hi) * btScalar(0.5));
-    if (world_ != nullptr) world_->updateSingleAabb(proxy.object.get());
+    btDbvtNode* leaf = shape_->getChildList()[i].m_node;
+    const btDbvtVolume box = btDbvtVolume::FromMM(lo, hi);
+    const btDbvtVolume loose = btDbvtVolume::FromMM(lo - slack3 * 2, hi + slack3 * 2);
+    if (!leaf->volume.Contain(box) || !loose.Contain(leaf->volume)) {
+      btDbvtVolume fat = btDbvtVolume::FromMM(lo - slack3, hi + slack3);
+      tree.update(leaf, fat);
+    }
   }
+  if (tree.m_root == nullptr) return overflows;
+  const btVector3 lo = tree.m_root->volume.Mins(), hi = tree.m_root->volume.Maxs();
+  const double d2 = diagonal2(lo, hi);
+  if (!std::isfinite(d2) || d2 >= kBulletAabbLimit2) return size();  // the rope's box keeps its last value
+  shape_->setBox(lo, hi);
+  if (world_ != nullptr && !orphaned()) world_->updateSingleAabb(object_.get());
   return overflows;
+}
+
+void CapsuleProxies::capsulesOverlapping(const btVector3& lo, const btVector3& hi, std::vector<int>& out,
+                                         btNodeStack& stack) const {
+  struct Collector : btDbvt::ICollide {
+    explicit Collector(std::vector<int>& capsules) : capsules(capsules) {}
+    void Process(const btDbvtNode* leaf) override { capsules.push_back(leaf->dataAsInt); }
+    std::vector<int>& capsules;
+  } collector(out);
+  out.clear();
+  const btDbvt& tree = *shape_->getDynamicAabbTree();
+  tree.collideTVNoStackAlloc(tree.m_root, btDbvtVolume::FromMM(lo, hi), stack, collector);
+  std::sort(out.begin(), out.end());
 }
 
 Capsule CapsuleProxies::capsule(int i) const {
@@ -146,6 +196,16 @@ Capsule CapsuleProxies::capsule(int i) const {
   capsule.b = axis_[static_cast<std::size_t>(i) + 1];
   capsule.radius = radius_;
   return capsule;
+}
+
+double CapsuleProxies::parameterNear(int i, const btVector3& point) const {
+  const Capsule c = capsule(i);
+  const btVector3 axis = c.b - c.a;
+  const double axis2 = static_cast<double>(axis.length2());
+  double t = axis2 > 0.0 ? static_cast<double>((point - c.a).dot(axis)) / axis2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  const CapsuleProxy& p = proxy(i);
+  return p.s0 + t * (p.s1 - p.s0);
 }
 
 RopeObject* CapsuleProxies::ropeOf(const btCollisionObject& object) {

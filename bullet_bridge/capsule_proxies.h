@@ -1,14 +1,26 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The rope's collision proxy in Bullet's broadphase: capsules of the rope's radius over equal
-// parameter pieces of every knot span (capsulesPerSpan per span, rebuilt after knot insertions and
-// removals). Each capsule is a btCollisionObject whose axis-aligned box covers the capsule at the
-// start of the coming step and at its predicted end (positions + h * velocity), padded by the radius,
-// the speculative margin and the curve's bulge over the chord, so Bullet's broadphase finds every
-// body the capsule can touch during the step (swept boxes). The objects carry CF_NO_CONTACT_RESPONSE
-// and a collision shape for which Bullet's dispatcher runs no narrowphase, so Bullet's solver never
-// sees them: all rope contact goes through the bridge's own narrowphase and response.
+// The rope's one collision object in Bullet's world. Its shape (rope_shape.h) is a compound of
+// capsules of the rope's radius over equal parameter pieces of every knot span (capsulesPerSpan per
+// span; capsules are added and removed at the end as knots come and go, so child index = capsule
+// index along the rope), and the compound's btDbvt is the rope's midphase tree.
+//
+// Why one object per rope and not one per capsule (issue 14): Bullet widens every broadphase box by
+// its contact breaking threshold, so per-capsule boxes paired every capsule with dozens of a
+// neighbouring rope's and the pair cache grew with the number of capsules near each other; Bullet's
+// own queries could not see the capsules either. This is btSoftBody's model: one broadphase box per
+// body, a tree of its parts inside. Why a btCompoundShape for that tree: its dynamic AABB tree is
+// exactly such a btDbvt, and every query of btCollisionWorld (rayTest, contactTest, contactPairTest,
+// convexSweepTest) already walks compounds child by child, so ropes show up in them with no query
+// code of ours. The leaves are the capsules' swept boxes, not their tight boxes: each covers the
+// capsule now and over the coming step (positions + h * velocity, in every direction), padded by the
+// radius, the speculative margin and the curve's bulge over the chord, and kept a little fatter
+// (kLeafSlack) so that a rope at rest never touches its tree. The object's broadphase box is the
+// tree's root. The object carries CF_STATIC_OBJECT | CF_NO_CONTACT_RESPONSE and stays active
+// (DISABLE_DEACTIVATION): Bullet's dispatcher then reports each of its broadphase pairs to the
+// bridge (rope_dispatch.h) and never runs a narrowphase or a solver contact for it.
 
+#include <BulletCollision/BroadphaseCollision/btDbvt.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <BulletCollision/CollisionDispatch/btCollisionWorld.h>
 
@@ -17,21 +29,20 @@
 
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/capsule.h"
-#include "bullet_bridge/swept_box_shape.h"
+#include "bullet_bridge/rope_shape.h"
 #include "rope/rod/rod.h"
 
 namespace rope::bullet {
 
 class RopeObject;
 
-// userIndex2 of every dynamic rope capsule: tells rope capsules from the user's objects (userPointer is
-// the RopeObject, userIndex the capsule index).
+// userIndex2 of every rope's collision object: tells ropes from the user's objects (userPointer is
+// the RopeObject).
 constexpr int kRopeCapsuleTag = 0x526f7065;  // "Rope"
 
 struct CapsuleProxy {
-  double s0 = 0.0, s1 = 0.0;                  // curve parameters of the capsule's axis ends
-  std::unique_ptr<SweptBoxShape> shape;       // the swept box (see the header comment)
-  std::unique_ptr<btCollisionObject> object;  // registered in the world's broadphase
+  double s0 = 0.0, s1 = 0.0;            // curve parameters of the capsule's axis ends
+  btCollisionObject* object = nullptr;  // the rope's collision object (shared by all its capsules)
 };
 
 class CapsuleProxies {
@@ -41,40 +52,58 @@ class CapsuleProxies {
   CapsuleProxies(const CapsuleProxies&) = delete;
   CapsuleProxies& operator=(const CapsuleProxies&) = delete;
 
-  // Registers every capsule in world's broadphase with the given filter / removes them again.
+  // Registers the rope's object in world's broadphase with the given filter / removes it again.
   // removeFromWorld leaves the world alone if it was destroyed already (orphaned()).
   void addToWorld(btCollisionWorld& world, int group, int mask);
   void removeFromWorld();
-  // True if the capsules were added to a world and every one has since lost its broadphase handle:
-  // Bullet's btCollisionWorld destructor clears the handles of the objects still in it, so the world
-  // was destroyed (or someone removed every capsule by hand) and must not be touched any more.
+  // True if the object was added to a world and has since lost its broadphase handle: Bullet's
+  // btCollisionWorld destructor clears the handles of the objects still in it, so the world was
+  // destroyed (or someone removed the object by hand) and must not be touched any more.
   bool orphaned() const;
+  // The broadphase filter of the object (in the world: its broadphase proxy's too).
+  void setFilter(int group, int mask);
 
-  // Follows the rod's current knots (adds or removes capsules) and evaluates the capsule axes.
+  // Follows the rod's current knots (adds or removes capsules) and evaluates the capsule axes (the
+  // compound's children follow in updateBoxes).
   void rebuild(const Rod& rod);
-  // Rebuilds, then sets each box to cover the capsule now and after predictionTime (s) of the rod's
-  // current velocities, padded by margin (m), and tells the broadphase. A box Bullet would drop as too
-  // large (diagonal^2 >= 1e12 m^2, its "overflow in AABB" rule) is not applied; the count is returned.
+  // Rebuilds, places the compound's capsule children, then sets each capsule's tree leaf to cover the capsule now and after predictionTime
+  // (s) of the rod's current velocities, padded by margin (m), and the object's box to the tree's
+  // root. A leaf Bullet would drop as too large (diagonal^2 >= 1e12 m^2, its "overflow in AABB"
+  // rule) is not applied; the count is returned (all capsules if the whole rope's box is too large).
   int updateBoxes(const Rod& rod, double predictionTime, double margin);
 
   int size() const { return static_cast<int>(proxies_.size()); }
   const CapsuleProxy& proxy(int i) const { return proxies_[static_cast<std::size_t>(i)]; }
   // Capsule i at the rod state of the last rebuild, world frame.
   Capsule capsule(int i) const;
+  // The curve parameter of the point of capsule i's axis nearest to `point` (world frame).
+  double parameterNear(int i, const btVector3& point) const;
 
-  // The rope a collision object stands in for, or nullptr if it is not a rope capsule.
+  const btCollisionObject& object() const { return *object_; }
+  btCollisionObject& object() { return *object_; }
+  const RopeShape& shape() const { return *shape_; }
+  // The midphase tree (leaves: swept capsule boxes; leaf->dataAsInt = capsule index).
+  const btDbvt& tree() const { return *shape_->getDynamicAabbTree(); }
+  // Midphase: the capsules whose leaves meet the box [lo, hi] (world frame), in increasing order, into
+  // `out` (cleared first); `stack` is the traversal's scratch.
+  void capsulesOverlapping(const btVector3& lo, const btVector3& hi, std::vector<int>& out, btNodeStack& stack) const;
+
+  // The rope a collision object is, or nullptr if it is not a rope's object.
   static RopeObject* ropeOf(const btCollisionObject& object);
-  // Index of the capsule within its rope (valid only if ropeOf(object) != nullptr).
-  static int capsuleIndexOf(const btCollisionObject& object) { return object.getUserIndex(); }
 
  private:
+  void addCapsule();
+  void placeCapsule(int i);
+
   RopeObject& owner_;
   int capsulesPerSpan_;
   btScalar radius_;
   std::vector<CapsuleProxy> proxies_;
   std::vector<btVector3> axis_;  // size() + 1 axis points at the last rebuild
+  std::vector<std::unique_ptr<RopeCapsuleShape>> capsuleShapes_;
+  std::unique_ptr<RopeShape> shape_;
+  std::unique_ptr<btCollisionObject> object_;
   btCollisionWorld* world_ = nullptr;
-  int group_ = 0, mask_ = 0;
 };
 
 }  // namespace rope::bullet

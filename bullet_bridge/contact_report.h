@@ -73,7 +73,7 @@ struct RopeStepRecord {
   // Wall-clock time of the rope's parts of the substep, s (profiling only; not deterministic).
   double contactSeconds = 0.0;   // candidate recheck, narrowphase and contact law
   double solveSeconds = 0.0;     // rod step (implicit solve, adaptivity) and body impulses
-  double proxySeconds = 0.0;     // capsule rebuild and swept boxes handed to the broadphase
+  double proxySeconds = 0.0;     // capsule rebuild, tree leaves refitted, rope box to the broadphase
 };
 
 struct ContactReport {
@@ -88,7 +88,7 @@ struct ContactReport {
   std::vector<RopeAttachmentRecord> attachments;    // every attachment of every rope, after the substep
   double ropeContactSeconds = 0.0;  // rope-rope narrowphase and coupled solve, s (profiling)
   const char* ropeContactFailure = "";  // non-empty: the rope-rope solve failed this substep (static text)
-  double pairScanSeconds = 0.0;  // reading Bullet's pair cache for rope candidates, s (profiling)
+  double pairScanSeconds = 0.0;  // midphase: the dispatched rope pairs and the ropes' trees, s (profiling)
   double maxPenetration() const;  // over all ropes, m
   double maxSelfOverlap() const;  // over all rope-rope and self-contacts, m
 };

@@ -130,6 +130,16 @@ void RopeObject::enterWorld(RopeWorld& world, btCollisionWorld& collisionWorld) 
   proxies_->updateBoxes(rod_, settings_.initialPredictionTime, settings_.speculativeMargin);
 }
 
+void RopeObject::setCollisionFilter(int group, int mask) {
+  if (group == 0) throw InvalidArgument("group", "0", "must have at least one bit set");
+  if (world_ != nullptr && world_->stepping()) {
+    throw InvalidArgument("rope", "its world is stepping", "change the collision filter between steps");
+  }
+  settings_.collisionGroup = group;
+  settings_.collisionMask = mask;
+  proxies_->setFilter(group, mask);
+}
+
 void RopeObject::leaveWorld() {
   proxies_->removeFromWorld();
   bodyContacts_.reset();

@@ -52,6 +52,13 @@ class RopeObject {
   const BulletRopeSettings& settings() const { return settings_; }
   RopeWorld* world() const { return world_; }
   const CapsuleProxies& proxies() const { return *proxies_; }
+  // The rope's one collision object in the Bullet world (capsule_proxies.h): Bullet's queries report
+  // hits on it (rope_queries.h: ropeHit gives the rope and s of a hit).
+  const btCollisionObject& collisionObject() const { return proxies_->object(); }
+  // New broadphase filter (settings().collisionGroup / collisionMask), in effect from the next
+  // collision detection on. Throws InvalidArgument naming "group" (0: no bit set), or "rope" while its
+  // RopeWorld is in a substep (from a substep callback: the dispatch is under way), and changes nothing.
+  void setCollisionFilter(int group, int mask);
 
   // ---- attachments (ids are unique per rope) ----
   // C(s) to the body's point `localPoint` (centre-of-mass frame). Throws InvalidArgument for s

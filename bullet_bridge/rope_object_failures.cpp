@@ -121,9 +121,11 @@ void RopeObject::restSubstep(const std::vector<const btCollisionObject*>& candid
     body->getCollisionShape()->getAabb(body->getWorldTransform(), bodyMin, bodyMax);
     pushes.clear();
     const std::size_t firstRecord = contacts_.size();
-    for (int i = 0; i < proxies_->size(); ++i) {
-      const btBroadphaseProxy* proxy = proxies_->proxy(i).object->getBroadphaseHandle();
-      if (proxy != nullptr && !TestAabbAgainstAabb2(proxy->m_aabbMin, proxy->m_aabbMax, bodyMin, bodyMax)) continue;
+    // The capsules whose tree leaves meet the body's box, in capsule order.
+    std::vector<int> near;
+    btNodeStack stack;
+    proxies_->capsulesOverlapping(bodyMin, bodyMax, near, stack);
+    for (const int i : near) {
       found.clear();
       try {
         findContacts(proxies_->capsule(i), *body, settings_.speculativeMargin, found);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "bullet_bridge/find_contacts.h"
@@ -81,6 +82,7 @@ bool rayCapsule(const btVector3& o, const btVector3& d, const Capsule& capsule, 
   return hit;
 }
 
+// The capsules of a rope whose tree leaves a ray crosses (btDbvt::rayTest), then the exact capsule.
 class RopeRayCallback : public btBroadphaseRayCallback {
  public:
   RopeRayCallback(const RopeWorld& world, const btVector3& from, const btVector3& to)
@@ -99,21 +101,26 @@ class RopeRayCallback : public btBroadphaseRayCallback {
     const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
     const RopeObject* rope = CapsuleProxies::ropeOf(*object);
     if (rope == nullptr || !world_.contains(*rope)) return true;
-    const int index = CapsuleProxies::capsuleIndexOf(*object);
-    if (index < 0 || index >= rope->proxies().size()) return true;
-    const Capsule capsule = rope->proxies().capsule(index);
-    double lambda = 0.0, t = 0.0;
-    if (!rayCapsule(from_, to_ - from_, capsule, lambda, t)) return true;
-    if (best && !(lambda < best->fraction)) return true;
-    const CapsuleProxy& capsuleProxy = rope->proxies().proxy(index);
-    RayHit hit;
-    hit.rope = rope;
-    hit.fraction = lambda;
-    hit.s = capsuleProxy.s0 + t * (capsuleProxy.s1 - capsuleProxy.s0);
-    hit.point = from_ + (to_ - from_) * static_cast<btScalar>(lambda);
-    const btVector3 outward = hit.point - capsule.axisPoint(static_cast<btScalar>(t));
-    hit.normal = outward.length() > btScalar(0) ? outward.normalized() : btVector3(0, 0, 1);
-    best = hit;
+    struct Leaves : btDbvt::ICollide {
+      void Process(const btDbvtNode* leaf) override { capsules.push_back(leaf->dataAsInt); }
+      std::vector<int> capsules;
+    } leaves;
+    btDbvt::rayTest(rope->proxies().tree().m_root, from_, to_, leaves);
+    for (const int index : leaves.capsules) {
+      const Capsule capsule = rope->proxies().capsule(index);
+      double lambda = 0.0, t = 0.0;
+      if (!rayCapsule(from_, to_ - from_, capsule, lambda, t)) continue;
+      if (best && !(lambda < best->fraction)) continue;
+      const CapsuleProxy& capsuleProxy = rope->proxies().proxy(index);
+      RayHit hit;
+      hit.rope = rope;
+      hit.fraction = lambda;
+      hit.s = capsuleProxy.s0 + t * (capsuleProxy.s1 - capsuleProxy.s0);
+      hit.point = from_ + (to_ - from_) * static_cast<btScalar>(lambda);
+      const btVector3 outward = hit.point - capsule.axisPoint(static_cast<btScalar>(t));
+      hit.normal = outward.length() > btScalar(0) ? outward.normalized() : btVector3(0, 0, 1);
+      best = hit;
+    }
     return true;
   }
 
@@ -130,10 +137,10 @@ class RopeAabbCallback : public btBroadphaseAabbCallback {
   bool process(const btBroadphaseProxy* proxy) override {
     const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
     const RopeObject* rope = CapsuleProxies::ropeOf(*object);
-    if (rope != nullptr && world_.contains(*rope)) capsules.push_back(object);
+    if (rope != nullptr && world_.contains(*rope)) ropes.push_back(rope);
     return true;
   }
-  std::vector<const btCollisionObject*> capsules;
+  std::vector<const RopeObject*> ropes;
 
  private:
   const RopeWorld& world_;
@@ -151,7 +158,14 @@ std::optional<RayHit> rayTestRopes(const RopeWorld& world, const btVector3& from
 
 std::optional<RayHit> rayTest(const RopeWorld& world, const btVector3& from, const btVector3& to) {
   std::optional<RayHit> best = rayTestRopes(world, from, to);
-  btCollisionWorld::ClosestRayResultCallback bodies(from, to);
+  // Bullet's own ray test sees the ropes' objects too (at its convex cast's precision): bodies only.
+  struct BodiesOnly : btCollisionWorld::ClosestRayResultCallback {
+    using ClosestRayResultCallback::ClosestRayResultCallback;
+    bool needsCollision(btBroadphaseProxy* proxy) const override {
+      const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+      return CapsuleProxies::ropeOf(*object) == nullptr && ClosestRayResultCallback::needsCollision(proxy);
+    }
+  } bodies(from, to);
   world.dynamicsWorld().rayTest(from, to, bodies);
   if (bodies.hasHit() && (!best || bodies.m_closestHitFraction < best->fraction)) {
     RayHit hit;
@@ -181,33 +195,80 @@ std::vector<RopeContactHit> contactTest(const RopeWorld& world, const btCollisio
   RopeAabbCallback callback(world);
   const_cast<RopeWorld&>(world).dynamicsWorld().getBroadphase()->aabbTest(lo, hi, callback);
   // Deterministic order: by rope (world order), then capsule index.
-  std::vector<std::pair<std::pair<int, int>, const btCollisionObject*>> ordered;
-  for (const btCollisionObject* capsule : callback.capsules) {
-    const RopeObject* rope = CapsuleProxies::ropeOf(*capsule);
+  std::vector<std::pair<int, const RopeObject*>> ropes;
+  for (const RopeObject* rope : callback.ropes) {
     const int ropeIndex =
         static_cast<int>(std::find(world.ropes().begin(), world.ropes().end(), rope) - world.ropes().begin());
-    ordered.push_back({{ropeIndex, CapsuleProxies::capsuleIndexOf(*capsule)}, capsule});
+    ropes.push_back({ropeIndex, rope});
   }
-  std::sort(ordered.begin(), ordered.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::sort(ropes.begin(), ropes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<RopeContactHit> hits;
   std::vector<Contact> contacts;
-  for (const auto& entry : ordered) {
-    const RopeObject* rope = CapsuleProxies::ropeOf(*entry.second);
-    const int index = CapsuleProxies::capsuleIndexOf(*entry.second);
-    if (index < 0 || index >= rope->proxies().size()) continue;
-    contacts.clear();
-    findContacts(rope->proxies().capsule(index), object, margin, contacts);
-    const CapsuleProxy& proxy = rope->proxies().proxy(index);
-    for (const Contact& contact : contacts) {
-      RopeContactHit hit;
-      hit.rope = rope;
-      hit.s = proxy.s0 + static_cast<double>(contact.t) * (proxy.s1 - proxy.s0);
-      hit.contact = contact;
-      hits.push_back(hit);
+  std::vector<int> capsules;
+  btNodeStack stack;
+  for (const auto& entry : ropes) {
+    const RopeObject* rope = entry.second;
+    rope->proxies().capsulesOverlapping(lo, hi, capsules, stack);
+    for (const int index : capsules) {
+      contacts.clear();
+      findContacts(rope->proxies().capsule(index), object, margin, contacts);
+      const CapsuleProxy& proxy = rope->proxies().proxy(index);
+      for (const Contact& contact : contacts) {
+        RopeContactHit hit;
+        hit.rope = rope;
+        hit.s = proxy.s0 + static_cast<double>(contact.t) * (proxy.s1 - proxy.s0);
+        hit.contact = contact;
+        hits.push_back(hit);
+      }
     }
   }
   return hits;
+}
+
+}  // namespace rope::bullet
+
+namespace rope::bullet {
+
+std::optional<RopeHitLocation> ropeHit(const btCollisionObject& object, int childIndex, const btVector3& point) {
+  const RopeObject* rope = CapsuleProxies::ropeOf(object);
+  if (rope == nullptr) return std::nullopt;
+  requireFinitePoint("point", point);
+  if (childIndex < 0 || childIndex >= rope->proxies().size()) {
+    throw InvalidArgument("childIndex", std::to_string(childIndex),
+                          "must name one of the rope's " + std::to_string(rope->proxies().size()) + " capsules");
+  }
+  return RopeHitLocation{rope, childIndex, rope->proxies().parameterNear(childIndex, point)};
+}
+
+std::optional<RopeHitLocation> ropeHit(const btCollisionObject& object, const btVector3& point) {
+  const RopeObject* rope = CapsuleProxies::ropeOf(object);
+  if (rope == nullptr) return std::nullopt;
+  requireFinitePoint("point", point);
+  const CapsuleProxies& proxies = rope->proxies();
+  if (proxies.size() == 0) return std::nullopt;
+  // The capsule whose surface is nearest to the point (a point on the rope lies in its capsule's
+  // leaf; the tree narrows the search to the leaves around it, all capsules if none).
+  std::vector<int> capsules;
+  btNodeStack stack;
+  proxies.capsulesOverlapping(point, point, capsules, stack);
+  if (capsules.empty()) {
+    for (int i = 0; i < proxies.size(); ++i) capsules.push_back(i);
+  }
+  int best = capsules.front();
+  double bestGap = std::numeric_limits<double>::infinity();
+  for (const int i : capsules) {
+    const Capsule capsule = proxies.capsule(i);
+    const double s = proxies.parameterNear(i, point);
+    const CapsuleProxy& proxy = proxies.proxy(i);
+    const double t = proxy.s1 > proxy.s0 ? (s - proxy.s0) / (proxy.s1 - proxy.s0) : 0.0;
+    const double gap = std::abs(static_cast<double>((point - capsule.axisPoint(static_cast<btScalar>(t))).length()) -
+                                static_cast<double>(capsule.radius));
+    if (gap < bestGap) {
+      bestGap = gap;
+      best = i;
+    }
+  }
+  return RopeHitLocation{rope, best, proxies.parameterNear(best, point)};
 }
 
 }  // namespace rope::bullet

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// World queries that see ropes: Bullet's broadphase finds the rope capsules a ray or an object's box
-// touches (the capsules are ordinary broadphase proxies), then the exact capsule geometry answers,
-// with the rope and the curve parameter s that was hit. Bullet's own btCollisionWorld::rayTest and
-// contactTest pass through rope capsules (their shape reports nothing), so these are the calls to use
-// when ropes matter; rayTest below also reports the bodies via Bullet's rayTest.
+// Rope hits of world queries. A rope is one Bullet collision object whose shape is a compound of its
+// capsules (capsule_proxies.h), so Bullet's own btCollisionWorld::rayTest, convexSweepTest,
+// contactTest and contactPairTest report hits on ropes like on any compound, filtered by the rope's
+// collisionGroup / collisionMask: ropeHit() below turns such a hit (the object, the child index
+// Bullet reports, the hit point) into the rope and the curve parameter s. The functions after it are
+// conveniences with exact capsule geometry: Bullet's broadphase finds the ropes, the rope's tree
+// the capsules, and a closed-form ray-capsule or the bridge's narrowphase answers.
 
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <LinearMath/btVector3.h>
@@ -19,6 +21,25 @@ namespace rope::bullet {
 
 class RopeObject;
 class RopeWorld;
+
+// A hit on a rope: which rope, which of its capsules (= the compound child index), and the curve
+// parameter s of the point on the capsule's axis nearest to the hit point.
+struct RopeHitLocation {
+  const RopeObject* rope = nullptr;
+  int capsule = 0;
+  double s = 0.0;
+};
+
+// The rope and s of a Bullet query's hit on `object`: childIndex is the compound child Bullet
+// reports (LocalRayResult::m_localShapeInfo->m_triangleIndex of a rayTest result,
+// LocalConvexResult::m_localShapeInfo->m_triangleIndex of a convexSweepTest result, the index0 /
+// index1 argument of ContactResultCallback::addSingleResult), point the hit point (world frame).
+// Returns nullopt if object is not a rope's. Throws InvalidArgument naming "point.x" (.y, .z) for a
+// non-finite point or "childIndex" for an index that names no capsule of the rope.
+std::optional<RopeHitLocation> ropeHit(const btCollisionObject& object, int childIndex, const btVector3& point);
+// The same for a result that carries no child index (ClosestRayResultCallback, ClosestConvexResultCallback):
+// the capsule whose surface is nearest to point.
+std::optional<RopeHitLocation> ropeHit(const btCollisionObject& object, const btVector3& point);
 
 struct RayHit {
   const btCollisionObject* body = nullptr;  // the body hit, or nullptr for a rope

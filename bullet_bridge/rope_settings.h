@@ -107,10 +107,10 @@ struct BulletRopeSettings {
   double initialPredictionTime = 1.0 / 60.0;
   // Share of the stable explicit limit used on dynamic bodies, in (0, 1] (see lineContactStiffness).
   double bodyStabilityFactor = 0.25;
-  // Broadphase filter of the rope's capsules. The default group is a bit no stock Bullet filter uses;
+  // Broadphase filter of the rope's collision object. The default group is a bit no stock Bullet filter uses;
   // the mask accepts everything, rope capsules included, so that ropes meet each other (and
   // themselves) through the same broadphase. Two ropes touch only if each one's mask accepts the
-  // other's group; clearing the group bit from a rope's mask turns its rope-rope contact off.
+  // other's group; clearing the group bit from a rope's mask turns its rope-rope and self-contact off.
   int collisionGroup = 1 << 10;
   int collisionMask = -1;
 

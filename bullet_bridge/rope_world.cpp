@@ -29,6 +29,11 @@ class RopeWorld::Action : public btActionInterface {
   // substep(); this catches what is left (an allocation failure, say), drops every rope's pending
   // trial so that each keeps its last committed state, and counts it.
   void updateAction(btCollisionWorld*, btScalar dt) override {
+    struct Stepping {
+      explicit Stepping(bool& flag) : flag(flag) { flag = true; }
+      ~Stepping() { flag = false; }
+      bool& flag;
+    } stepping(owner_.stepping_);
     guardedCall([&] { owner_.substep(static_cast<double>(dt)); },
                 [&](const char* message) { owner_.recoverFromException(message); });
   }
@@ -52,13 +57,18 @@ double ContactReport::maxSelfOverlap() const {
   return deepest;
 }
 
-RopeWorld::RopeWorld(btDiscreteDynamicsWorld& world) : world_(world), action_(std::make_unique<Action>(*this)) {
+RopeWorld::RopeWorld(btDiscreteDynamicsWorld& world)
+    : world_(world), dispatch_(std::make_unique<RopeDispatch>(world)), action_(std::make_unique<Action>(*this)) {
   world_.addAction(action_.get());
 }
 
 RopeWorld::~RopeWorld() {
   while (!ropes_.empty()) removeRope(*ropes_.back());
-  if (!worldGone_) world_.removeAction(action_.get());
+  if (worldGone_) {
+    dispatch_->detach();
+  } else {
+    world_.removeAction(action_.get());
+  }
 }
 
 bool RopeWorld::contains(const RopeObject& rope) const {
@@ -213,52 +223,66 @@ void RopeWorld::skipSubstep(double h) {
 }
 
 void RopeWorld::findCandidates() {
-  // Candidate bodies per rope from Bullet's pair cache. The cache may still hold pairs whose boxes
-  // stopped overlapping (it cleans up lazily), so the overlap is checked again.
+  // The ropes' pairs Bullet's dispatch made (rope_dispatch.h): a rope and a body, or two ropes. Bullet
+  // drops pairs whose boxes parted lazily, so the overlap is checked again.
   const auto scanStart = std::chrono::steady_clock::now();
   candidates_.resize(ropes_.size());
   for (auto& list : candidates_) list.clear();
   capsulePairs_.clear();
-  btBroadphasePairArray& pairs = world_.getPairCache()->getOverlappingPairArray();
-  for (int i = 0; i < pairs.size(); ++i) {
-    const btBroadphaseProxy* proxy0 = pairs[i].m_pProxy0;
-    const btBroadphaseProxy* proxy1 = pairs[i].m_pProxy1;
-    if (proxy0 == nullptr || proxy1 == nullptr) continue;
-    const auto* object0 = static_cast<const btCollisionObject*>(proxy0->m_clientObject);
-    const auto* object1 = static_cast<const btCollisionObject*>(proxy1->m_clientObject);
+  ropeRopePairs_.clear();
+  const auto inThisWorld = [this](const RopeObject* rope) { return rope->world_ == this && rope->worldIndex_ >= 0; };
+  ropePairs_.forEach([&](const btCollisionObject* object0, const btCollisionObject* object1) {
+    const btBroadphaseProxy* proxy0 = object0->getBroadphaseHandle();
+    const btBroadphaseProxy* proxy1 = object1->getBroadphaseHandle();
+    if (proxy0 == nullptr || proxy1 == nullptr) return;
+    if (!TestAabbAgainstAabb2(proxy0->m_aabbMin, proxy0->m_aabbMax, proxy1->m_aabbMin, proxy1->m_aabbMax)) return;
     RopeObject* rope0 = CapsuleProxies::ropeOf(*object0);
     RopeObject* rope1 = CapsuleProxies::ropeOf(*object1);
-    if (rope0 == nullptr && rope1 == nullptr) continue;  // no rope
     if (rope0 != nullptr && rope1 != nullptr) {
-      // Two rope capsules: a rope-rope or self-contact candidate (rope_rope_contact.h). Neighbouring
-      // capsules of one rope always overlap and are never a contact: dropped before anything else.
-      const int capsule0 = CapsuleProxies::capsuleIndexOf(*object0);
-      const int capsule1 = CapsuleProxies::capsuleIndexOf(*object1);
-      if (rope0 == rope1 && std::abs(capsule0 - capsule1) <= 1) continue;
-      // The swept boxes themselves: Bullet widens its copies by the contact breaking threshold on
-      // every side (btCollisionWorld::updateSingleAabb), which for two ropes side by side paired
-      // every capsule with dozens of the other rope's.
-      const btVector3 widening(gContactBreakingThreshold, gContactBreakingThreshold, gContactBreakingThreshold);
-      if (!TestAabbAgainstAabb2(proxy0->m_aabbMin + widening, proxy0->m_aabbMax - widening,
-                                proxy1->m_aabbMin + widening, proxy1->m_aabbMax - widening)) {
-        continue;
-      }
-      const int index0 = rope0->worldIndex_, index1 = rope1->worldIndex_;
-      if (index0 < 0 || index1 < 0) continue;
-      capsulePairs_.push_back(index0 < index1 || (index0 == index1 && capsule0 < capsule1)
-                                  ? RopeCapsulePair{index0, capsule0, index1, capsule1}
-                                  : RopeCapsulePair{index1, capsule1, index0, capsule0});
-      continue;
+      if (inThisWorld(rope0) && inThisWorld(rope1)) ropeRopePairs_.emplace_back(rope0, rope1);
+      return;
     }
     RopeObject* rope = rope0 != nullptr ? rope0 : rope1;
     const btCollisionObject* body = rope0 != nullptr ? object1 : object0;
     // Triggers and other objects that want no contact response get none from ropes either.
-    if (body->hasContactResponse() == false) continue;
-    if (!TestAabbAgainstAabb2(proxy0->m_aabbMin, proxy0->m_aabbMax, proxy1->m_aabbMin, proxy1->m_aabbMax)) continue;
-    if (rope->worldIndex_ < 0) continue;
+    if (rope == nullptr || !body->hasContactResponse() || !inThisWorld(rope)) return;
     candidates_[static_cast<std::size_t>(rope->worldIndex_)].push_back(body);
+  });
+  // Rope-rope and self-contact candidates (rope_rope_contact.h): capsule pairs whose tree leaves
+  // (swept boxes) overlap.
+  for (const auto& pair : ropeRopePairs_) collideTrees(*pair.first, *pair.second);
+  // Self-contact needs the rope's own group in its mask, as for a pair of two ropes.
+  for (RopeObject* rope : ropes_) {
+    const BulletRopeSettings& settings = rope->settings();
+    if (settings.selfContact && (settings.collisionGroup & settings.collisionMask) != 0) collideTrees(*rope, *rope);
   }
   report_.pairScanSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - scanStart).count();
+}
+
+void RopeWorld::collideTrees(const RopeObject& a, const RopeObject& b) {
+  struct Collector : btDbvt::ICollide {
+    void Process(const btDbvtNode* leaf0, const btDbvtNode* leaf1) override {
+      int capsule0 = leaf0->dataAsInt, capsule1 = leaf1->dataAsInt;
+      if (self) {
+        // Neighbouring capsules of one rope always overlap and are never a contact.
+        if (std::abs(capsule0 - capsule1) <= 1) return;
+        if (capsule1 < capsule0) std::swap(capsule0, capsule1);
+      }
+      pairs->push_back(RopeCapsulePair{rope0, capsule0, rope1, capsule1});
+    }
+    std::vector<RopeCapsulePair>* pairs = nullptr;
+    int rope0 = 0, rope1 = 0;
+    bool self = false;
+  };
+  const bool swap = b.worldIndex_ < a.worldIndex_;
+  const RopeObject& first = swap ? b : a;
+  const RopeObject& second = swap ? a : b;
+  Collector collector;
+  collector.pairs = &capsulePairs_;
+  collector.rope0 = first.worldIndex_;
+  collector.rope1 = second.worldIndex_;
+  collector.self = &first == &second;
+  scratchTree_.collideTTpersistentStack(first.proxies().tree().m_root, second.proxies().tree().m_root, collector);
 }
 
 void RopeWorld::solveRopeContacts(double h) {

@@ -4,19 +4,24 @@
 // as btSoftRigidDynamicsWorld) and installs one btActionInterface in it, so every rope steps once per
 // Bullet internal substep with Bullet's fixed step, right after that substep's collision detection,
 // constraint solve and integration (stepSimulation(dt, maxSubSteps, fixedStep) works unchanged).
-// In each substep it reads Bullet's pair cache for bodies overlapping the ropes' swept capsule boxes
-// (re-checking the overlap: the cache keeps stale pairs for several steps), runs the bridge's
-// narrowphase, applies the contact and attachment response (contact_response.h, attachment.h), steps
-// the rods and refreshes the capsule boxes for the next substep.
+// Each rope is one collision object in the Bullet world (capsule_proxies.h): Bullet's broadphase sees
+// one box per rope and its dispatcher hands each of the rope's pairs to the RopeWorld (rope_dispatch.h,
+// which the RopeWorld installs on the world's btCollisionDispatcher). In each substep the RopeWorld
+// reads those pairs (re-checking the overlap: Bullet drops pairs lazily), finds the capsules involved in the ropes' trees (rope against a body's box, tree
+// against tree for rope-rope and self-contact), runs the bridge's narrowphase, applies the contact
+// and attachment response (contact_response.h, attachment.h), steps the rods and refits the trees
+// for the next substep. Bullet's own queries (rayTest, contactTest, contactPairTest,
+// convexSweepTest) see the ropes' capsules; rope_queries.h maps a hit to the rope and its s.
 //
 // Ownership: the user owns the Bullet world, the bodies, the RopeWorld and the RopeObjects. The
 // RopeWorld and the RopeObjects may be destroyed in either order (each unregisters itself).
 // The RopeWorld must be destroyed before the Bullet world (it removes its action and the ropes'
-// capsules), as every object a Bullet world holds must be removed from it before the world goes. If
-// the world is destroyed first anyway, a RopeWorld that held a rope at that moment notices it through
-// the rope's capsules (Bullet's world destructor clears their broadphase handles) and from then on
-// leaves the dead world alone, in its destructor too; a RopeWorld that held no rope then has nothing
-// to notice it by, and destroying it after its world is undefined behaviour.
+// objects and restores the dispatcher's create functions), as every object a Bullet world holds must
+// be removed from it before the world goes. If the world is destroyed first anyway, a RopeWorld that
+// held a rope at that moment notices it through the rope's object (Bullet's world destructor clears
+// its broadphase handle) and from then on leaves the dead world and its dispatcher alone, in its
+// destructor too; a RopeWorld that held no rope then has nothing to notice it by, and destroying it
+// after its world is undefined behaviour.
 //
 // Failures: nothing is thrown out of stepSimulation. A rope whose substep fails (a failed solve, an
 // exception from rope code or the narrowphase) keeps its last good state; its RopeStepRecord says why
@@ -29,7 +34,7 @@
 // between steps. Each substep the RopeWorld checks, by comparing pointers with the world's collision
 // object array (never dereferencing them), that every attached body is still there, and drops the
 // attachments of one that is not (RopeStepRecord::droppedAttachments, RopeWarnings::droppedAttachments).
-// Contacts are found afresh each substep from Bullet's pair cache, which forgets removed bodies.
+// Contacts are found afresh each substep from Bullet's dispatch, whose pairs go with removed bodies.
 
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
 
@@ -40,6 +45,7 @@
 
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/contact_report.h"
+#include "bullet_bridge/rope_dispatch.h"
 #include "bullet_bridge/friction_combination.h"
 #include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/rope_rope_contact.h"
@@ -48,25 +54,30 @@
 namespace rope::bullet {
 
 class RopeWorld {
-  friend class RopeObject;  // reads the friction combiner
+  friend class RopeObject;         // reads the friction combiner
+  friend class RopePairAlgorithm;  // lists the rope pairs Bullet's dispatch made
  public:
+  // Throws InvalidArgument("world", ...) if the world's dispatcher is not a btCollisionDispatcher or
+  // the world has a RopeWorld already (rope_dispatch.h).
   explicit RopeWorld(btDiscreteDynamicsWorld& world);
   ~RopeWorld();
   RopeWorld(const RopeWorld&) = delete;
   RopeWorld& operator=(const RopeWorld&) = delete;
 
-  // Registers the rope's capsules in the broadphase (settings().collisionGroup / collisionMask).
+  // Registers the rope's object in the broadphase (settings().collisionGroup / collisionMask).
   // Throws InvalidArgument("rope", ...) if the rope is already in this or another world.
   void addRope(RopeObject& rope);
-  // Takes the rope's capsules out again; its attachments stay defined but act only in a world.
+  // Takes the rope's object out again; its attachments stay defined but act only in a world.
   // Throws InvalidArgument("rope", ...) if the rope is not in this world.
   void removeRope(RopeObject& rope);
   bool contains(const RopeObject& rope) const;
+  // True while the ropes' substep runs (inside Bullet's stepSimulation, the substep callback included).
+  bool stepping() const { return stepping_; }
   const std::vector<RopeObject*>& ropes() const { return ropes_; }
 
   btDiscreteDynamicsWorld& dynamicsWorld() { return world_; }
   const btDiscreteDynamicsWorld& dynamicsWorld() const { return world_; }
-  // True if the object is one of the Bullet world's collision objects (and not a rope capsule).
+  // True if the object is one of the Bullet world's collision objects (and not a rope's).
   bool containsBody(const btCollisionObject& object) const;
 
   // The contacts and rope states of the last substep; the callback (if set) sees every substep. An
@@ -104,8 +115,15 @@ class RopeWorld {
   void failRopeContacts(const char* message);
   void recoverFromException(const char* message) noexcept;
 
+  // Self-contact and rope-rope capsule pairs from the ropes' trees (ropeA <= ropeB by world index).
+  void collideTrees(const RopeObject& a, const RopeObject& b);
+
   btDiscreteDynamicsWorld& world_;
+  std::unique_ptr<RopeDispatch> dispatch_;
+  RopePairs ropePairs_;  // filled by Bullet's dispatch (rope_dispatch.h)
   std::unique_ptr<Action> action_;
+  btDbvt scratchTree_;  // its traversal stack serves the tree-tree tests
+  std::vector<std::pair<RopeObject*, RopeObject*>> ropeRopePairs_;  // scratch
   std::vector<RopeObject*> ropes_;
   std::vector<std::vector<const btCollisionObject*>> candidates_;  // per rope, scratch
   std::vector<std::pair<const btRigidBody*, int>> bodyAttachmentCounts_;  // per substep, sorted by body
@@ -121,7 +139,8 @@ class RopeWorld {
   RopeWorldWarnings warnings_;
   std::string lastError_;
   bool debugDraw_ = true;
-  bool worldGone_ = false;  // a rope's capsules showed that the Bullet world was destroyed
+  bool stepping_ = false;
+  bool worldGone_ = false;  // a rope's object showed that the Bullet world was destroyed
 };
 
 }  // namespace rope::bullet

@@ -73,7 +73,9 @@ set(SPLINEROPE_BULLET_BRIDGE_SUPPORT_HEADERS
   bullet_bridge/contact_response.h   # via attachment.h and rope_rope_contact.h
   bullet_bridge/rope_rope_contact.h  # RopeWorld holds the rope-rope contact solver
   bullet_bridge/kinematic_push.h     # KinematicRope holds its one-way contacts
-  bullet_bridge/swept_box_shape.h    # the capsules' broadphase shape, held by both rope kinds
+  bullet_bridge/swept_box_shape.h    # the kinematic rope's capsule broadphase shape
+  bullet_bridge/rope_shape.h         # the rope's compound shape, held by capsule_proxies.h
+  bullet_bridge/rope_dispatch.h      # RopeWorld holds the rope pairs' dispatch
   bullet_bridge/body_contacts.h      # RopeObject holds its rope-body line contact
   bullet_bridge/line_contact.h       # BodyContacts holds its sampler
   bullet_bridge/friction_anchors.h   # BodyContacts holds the friction anchors

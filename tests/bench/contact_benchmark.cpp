@@ -1,17 +1,22 @@
 // SPDX-License-Identifier: MIT
 // Cost of rope contact (issue 13), per 1/240 s stepSimulation, with the library's DEFAULT RodSettings
 // and BulletRopeSettings and no cap on resolution (maxControlPoints is the default's):
-//   * N = 1, 10, 100 straight ropes (1 m, 16 initial control points, 5 mm radius) resting side by side
+//   * N = 1, 10, 100, 1000 straight ropes (1 m, 16 initial control points, 5 mm radius) resting side by side
 //     on a static box (demos/scenes/resting_rope_scene.h), and the same N Bullet soft-body ropes
 //     (btSoftBodyHelpers::CreateRope, 16 segments, 4 iterations: demos/scenes/softbody_ropes_scene.h)
 //     on the same box, in the same program, timed after 0.5 s of settling;
 //   * the knot scene (demos/scenes/knot_scene.h) once the knot is pulled tight (after 3 s), and the
 //     2 m pile (demos/scenes/pile_scene.h) once it has landed (after 1 s).
 // One iteration is one step; run with --benchmark_repetitions=5 and read the median aggregates.
-// Counters: control points per rope and active contacts per step (SplineRope side).
+// Counters: control points per rope and active contacts per step (SplineRope side), and the share of
+// the step's wall time in the bridge's parts (ContactReport / RopeStepRecord timers): midphase (the
+// dispatched rope pairs and the ropes' trees), narrowphase (rope-body contacts and their law), solve
+// (the rods' steps and the rope-rope contact solve), refit (capsules and tree leaves); the rest is
+// Bullet's step (broadphase, dispatch, rigid-body solve) and the benchmark loop.
 
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cmath>
 #include <memory>
 
@@ -37,17 +42,34 @@ void BM_SplineRopesOnBox(benchmark::State& state) {
   RestingRopeScene scene(settings);
   for (int i = 0; i < stepsFor(kSettleTime, scene.timeStep()); ++i) scene.step();
   long contacts = 0;
+  double midphase = 0.0, narrowphase = 0.0, solve = 0.0, refit = 0.0;
+  scene.physics().ropes().setSubstepCallback([&](const rope::bullet::ContactReport& report) {
+    midphase += report.pairScanSeconds;
+    solve += report.ropeContactSeconds;
+    for (const rope::bullet::RopeStepRecord& rope : report.ropes) {
+      narrowphase += rope.contactSeconds;
+      solve += rope.solveSeconds;
+      refit += rope.proxySeconds;
+    }
+  });
+  const auto start = std::chrono::steady_clock::now();
   for (auto _ : state) {
     scene.step();
     for (int r = 0; r < scene.ropeCount(); ++r) contacts += scene.rope(r).lastStep().contacts;
   }
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  state.counters["share_midphase"] = midphase / total;
+  state.counters["share_narrowphase"] = narrowphase / total;
+  state.counters["share_solve"] = solve / total;
+  state.counters["share_refit"] = refit / total;
+  state.counters["share_bullet_and_rest"] = 1.0 - (midphase + narrowphase + solve + refit) / total;
   int controlPoints = 0;
   for (int r = 0; r < scene.ropeCount(); ++r) controlPoints += scene.rope(r).rod().controlPointCount();
   state.counters["ropes"] = scene.ropeCount();
   state.counters["control_points_per_rope"] = static_cast<double>(controlPoints) / scene.ropeCount();
   state.counters["contacts_per_step"] = static_cast<double>(contacts) / static_cast<double>(state.iterations());
 }
-BENCHMARK(BM_SplineRopesOnBox)->ArgName("ropes")->Arg(1)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SplineRopesOnBox)->ArgName("ropes")->Arg(1)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 
 void BM_SoftBodyRopesOnBox(benchmark::State& state) {
   SoftBodyRopesSceneSettings settings;  // CreateRope, 16 segments, 4 iterations
@@ -57,7 +79,7 @@ void BM_SoftBodyRopesOnBox(benchmark::State& state) {
   for (auto _ : state) scene.step();
   state.counters["ropes"] = scene.ropeCount();
 }
-BENCHMARK(BM_SoftBodyRopesOnBox)->ArgName("ropes")->Arg(1)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SoftBodyRopesOnBox)->ArgName("ropes")->Arg(1)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 
 // The knot held tight by its grippers, per step (issue 13's target: 10x real time, <= 0.42 ms).
 void BM_KnotSceneStep(benchmark::State& state) {

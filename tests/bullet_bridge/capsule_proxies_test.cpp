@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Capsule proxies (bullet_bridge/capsule_proxies.h): the capsule set follows the knot vector, the
-// swept boxes cover the capsule now and at the predicted end of the step, and boxes Bullet would drop
-// as too large are detected and reported instead.
+// Capsule proxies (bullet_bridge/capsule_proxies.h): one collision object per rope whose compound
+// children follow the knot vector, whose tree leaves cover each capsule now and at the predicted end
+// of the step, and whose boxes Bullet would drop as too large are detected and reported instead.
 #include "bullet_bridge/capsule_proxies.h"
 
 #include <gtest/gtest.h>
@@ -23,9 +23,9 @@ RodSettings straightRope() {
   return rod;
 }
 
-bool contains(const btBroadphaseProxy& proxy, const btVector3& p, btScalar pad) {
+bool contains(const btVector3& lo, const btVector3& hi, const btVector3& p, btScalar pad) {
   for (int i = 0; i < 3; ++i) {
-    if (p[i] - pad < proxy.m_aabbMin[i] || p[i] + pad > proxy.m_aabbMax[i]) return false;
+    if (p[i] - pad < lo[i] || p[i] + pad > hi[i]) return false;
   }
   return true;
 }
@@ -42,7 +42,8 @@ TEST(CapsuleProxies, CapsulesPerSpanFollowKnotInsertion) {
   physics.world().stepSimulation(btScalar(1.0 / 240.0), 1, btScalar(1.0 / 240.0));
   const int spans = rope.rod().controlPointCount() - rope.rod().degree();
   EXPECT_EQ(rope.proxies().size(), 3 * spans);
-  EXPECT_EQ(physics.world().getNumCollisionObjects(), objects + rope.proxies().size() - 15);
+  EXPECT_EQ(physics.world().getNumCollisionObjects(), objects);  // still one object for the rope
+  EXPECT_EQ(rope.proxies().shape().getNumChildShapes(), rope.proxies().size());
   // The capsules tile the parameter range without gaps.
   for (int i = 0; i + 1 < rope.proxies().size(); ++i) {
     EXPECT_EQ(rope.proxies().proxy(i).s1, rope.proxies().proxy(i + 1).s0);
@@ -60,21 +61,33 @@ TEST(CapsuleProxies, SweptBoxesCoverStartAndPredictedEnd) {
   physics.world().stepSimulation(btScalar(h), 1, btScalar(h));
   const Rod& rod = rope.rod();
   const btScalar radius = static_cast<btScalar>(rod.settings().radius);
+  const btBroadphaseProxy* handle = rope.collisionObject().getBroadphaseHandle();
+  ASSERT_NE(handle, nullptr);
+  std::vector<const btDbvtNode*> leaves(static_cast<std::size_t>(rope.proxies().size()), nullptr);
+  struct Leaves : btDbvt::ICollide {
+    void Process(const btDbvtNode* leaf) override { (*out)[static_cast<std::size_t>(leaf->dataAsInt)] = leaf; }
+    std::vector<const btDbvtNode*>* out = nullptr;
+  } collect;
+  collect.out = &leaves;
+  btDbvt::enumLeaves(rope.proxies().tree().m_root, collect);
   for (int i = 0; i < rope.proxies().size(); ++i) {
     const CapsuleProxy& proxy = rope.proxies().proxy(i);
-    const btBroadphaseProxy* handle = proxy.object->getBroadphaseHandle();
-    ASSERT_NE(handle, nullptr);
+    const btDbvtNode* leaf = leaves[static_cast<std::size_t>(i)];
+    ASSERT_NE(leaf, nullptr);
     for (double s : {proxy.s0, proxy.s1}) {
       const Vec3 now = rod.position(s);
       const Vec3 next = now + h * rod.velocity(s);  // 10 cm lower
-      EXPECT_TRUE(contains(*handle, btVector3(now.x(), now.y(), now.z()), radius));
-      EXPECT_TRUE(contains(*handle, btVector3(next.x(), next.y(), next.z()), radius));
+      for (const Vec3& p : {now, next}) {
+        // The capsule's leaf, and the rope's broadphase box around all leaves.
+        EXPECT_TRUE(contains(leaf->volume.Mins(), leaf->volume.Maxs(), btVector3(p.x(), p.y(), p.z()), radius));
+        EXPECT_TRUE(contains(handle->m_aabbMin, handle->m_aabbMax, btVector3(p.x(), p.y(), p.z()), radius));
+      }
     }
-    // Not found by Bullet's own narrowphase or solver.
-    EXPECT_FALSE(proxy.object->hasContactResponse());
-    EXPECT_EQ(CapsuleProxies::ropeOf(*proxy.object), &rope);
-    EXPECT_EQ(CapsuleProxies::capsuleIndexOf(*proxy.object), i);
+    EXPECT_EQ(proxy.object, &rope.collisionObject());
   }
+  // Not found by Bullet's own narrowphase or solver.
+  EXPECT_FALSE(rope.collisionObject().hasContactResponse());
+  EXPECT_EQ(CapsuleProxies::ropeOf(rope.collisionObject()), &rope);
 }
 
 TEST(CapsuleProxies, HugeBoxesAreReportedNotHandedToBullet) {
@@ -88,9 +101,7 @@ TEST(CapsuleProxies, HugeBoxesAreReportedNotHandedToBullet) {
   physics.world().stepSimulation(btScalar(1.0 / 240.0), 1, btScalar(1.0 / 240.0));
   EXPECT_EQ(rope.lastStep().proxyOverflows, rope.proxies().size());
   EXPECT_EQ(physics.ropes().lastReport().ropes.at(0).proxyOverflows, rope.proxies().size());
-  for (int i = 0; i < rope.proxies().size(); ++i) {
-    EXPECT_NE(rope.proxies().proxy(i).object->getActivationState(), DISABLE_SIMULATION);
-  }
+  EXPECT_NE(rope.collisionObject().getActivationState(), DISABLE_SIMULATION);
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ const std::vector<SceneFileKeyTable>& sceneFileKeyTables() {
         "restLength", "radius", "linearDensity", "materialDensity", "youngsModulus", "bendingStiffness",
         "massDamping", "stiffnessDamping", "gravity", "timeIntegrator", "degree", "initialControlPoints", "stretchingQuadrature",
         "adaptive", "minControlPoints", "maxControlPoints", "insertAngle", "removeAngle", "removalErrorBound",
-        "removalVelocityErrorBound", "minKnotSpacing",
+        "removalVelocityErrorBound", "removalCriterion", "removalRelativeError", "minKnotSpacing",
         // BulletRopeSettings (bullet_bridge/rope_settings.h)
         "lineContactStiffness", "lineContactDamping", "lineSpeculativeDamping", "contactQuadraturePoints",
         "concentratedContactRatio", "friction", "frictionVelocity", "gravitySource", "gravityScale", "fluidDensity",

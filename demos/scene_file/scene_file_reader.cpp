@@ -135,6 +135,10 @@ void readRopeSettings(const JsonFields& fields, RodSettings& rod, bullet::Bullet
   rod.removeAngle = fields.number("removeAngle", rod.removeAngle);
   rod.removalErrorBound = fields.number("removalErrorBound", rod.removalErrorBound);
   rod.removalVelocityErrorBound = fields.number("removalVelocityErrorBound", rod.removalVelocityErrorBound);
+  rod.removalCriterion = fields.choice("removalCriterion", {"polygon", "mechanical"}, "polygon") == "mechanical"
+                             ? RemovalCriterion::kMechanical
+                             : RemovalCriterion::kPolygon;
+  rod.removalRelativeError = fields.number("removalRelativeError", rod.removalRelativeError);
   rod.minKnotSpacing = fields.number("minKnotSpacing", rod.minKnotSpacing);
 
   bridge.lineContactStiffness = fields.number("lineContactStiffness", bridge.lineContactStiffness);

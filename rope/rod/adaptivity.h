@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "rope/common/types.h"
+#include "rope/rod/rod_integrals.h"
 #include "rope/spline/knot_removal.h"
 #include "rope/spline/knot_vector.h"
 
@@ -42,8 +43,41 @@ void curvatureInsertionSpans(const KnotVector& knots, const std::vector<double>&
 struct LocalRemoval {
   int offset = 0;          // global index of after[0]
   PointList after;         // removed values at global indices offset .. offset + after.size() - 1
-  double error = 0.0;
+  // (removed values with the knot inserted again) - values, at global indices offset ..
+  // offset + change.size() - 1 of the array before removal; zero everywhere else.
+  PointList change;
+  double error = 0.0;      // max |change|
 };
 LocalRemoval localRemoval(const KnotRemoval& plan, const PointList& values);
+
+// How well the coarser spline represents the state's mechanics (RemovalCriterion::kMechanical,
+// docs/method.md §10). With dq, dv the removal's change of the points and velocities (knot inserted
+// again), summed over the knot spans where it changes the curve:
+//   velocity   dv^T M dv  against (v - v_mean)^T M (v - v_mean)   (M: mass matrix, kg)
+//              dv^T G dv  against v^T G v   (G = int b_i'' b_j'' / l0'^3 ds: the field's curvature,
+//                                           blind to translation and rotation)
+//   curvature  EI dq^T G dq + sum_g EA e_g w1_g |dC'_g|^2  (bending, and the tension's geometric
+//              stiffness)  against EI q^T G q + EA sum_g w0_g e_g^2  (the internal energy there)
+//   strain     sum_g w0_g de_g^2 against sum_g w0_g e_g^2 (Green–Lagrange e at the stretching
+//              points): reported, not part of worst() (see adaptivity.cpp)
+// each as the ratio sqrt(err) / (relative * sqrt(size) + floor), floors from MechanicsBounds scaled
+// to the region's mass and rest length: the removal keeps the mechanics when worst() <= 1. Inputs
+// are the fields before removal and the local removals of the points and velocities with the same
+// plan. O(d^2) per span touched, about 2d + 2 spans.
+struct RemovalMechanics {
+  double velocity = 0.0;
+  double curvature = 0.0;
+  double strain = 0.0;
+  double worst() const;  // max(velocity, curvature)
+};
+struct MechanicsBounds {
+  double relative = 1e-4;        // RodSettings::removalRelativeError
+  double axialStiffness = 0.0;   // N, EA
+  double positionFloor = 1e-8;   // m: relative * removalErrorBound
+  double velocityFloor = 1e-7;   // m/s: relative * removalVelocityErrorBound
+};
+RemovalMechanics removalMechanics(const RodIntegrals& integrals, const PointList& points,
+                                  const PointList& velocities, const LocalRemoval& pointRemoval,
+                                  const LocalRemoval& velocityRemoval, const MechanicsBounds& bounds);
 
 }  // namespace rope

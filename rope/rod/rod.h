@@ -20,8 +20,11 @@
 // steps (eq. 22c); loads, springs, gravity and mass damping keep the full weight h in both, so the rod's
 // momentum changes by exactly the impulse its loads deliver.
 // Then adaptivity ([A] §4): knots at interaction points, insertion where the control polygon bends
-// (included angle < insertAngle), removal where it is straight (> removeAngle) and the removal error
-// is within removalErrorBound; counts stay within [minControlPoints, maxControlPoints].
+// (included angle < insertAngle), removal where it is straight (> removeAngle), the removal error
+// is within removalErrorBound and (RemovalCriterion::kMechanical, opt-in) the coarser spline
+// carries the velocity field and the internal energy (docs/method.md §10); a removal from a rope that
+// nothing holds or touches keeps its linear momentum exactly.
+// Counts stay within [minControlPoints, maxControlPoints].
 //
 // Failure: bad input throws InvalidArgument and changes nothing. A step whose factorisation fails,
 // whose result is not finite, or that makes the rope longer than kMaxStepStretch times its rest
@@ -70,7 +73,8 @@ struct StepReport {
   int insertions = 0;         // knots inserted by adaptivity in this step
   int removals = 0;           // knots removed by adaptivity in this step
   double maxRemovalError = 0.0;          // m, largest curve displacement a removal caused
-  double maxRemovalVelocityError = 0.0;  // m/s, same for the velocity field
+  double maxRemovalVelocityError = 0.0;  // m/s, same for the velocity field (removal sweep and
+                                         // momentum correction)
   // The knot vector after the step is Rod::knots().
 };
 
@@ -250,7 +254,8 @@ class Rod {
   // settings.minKnotSpacing of rest length to a neighbouring knot: so short a span makes every
   // later step fail.
   void insertKnot(double s);
-  // Removes one occurrence of the knot s ([A] eq. 7); returns how much the fields moved.
+  // Removes one occurrence of the knot s ([A] eq. 7), momentum kept as by an adaptive removal
+  // (free ropes); returns how much the fields moved.
   RemovalReport removeKnot(double s);
   // Cuts at cutPoint(s) (no pin exactly there): two independent rods that inherit positions,
   // velocities, rest state, pins and queued loads on their side. This rod is unchanged.
@@ -345,8 +350,13 @@ class Rod {
   bool overstretchedBy(const PointList& next) const;
   void adapt(StepReport& report);
   void insertKnotUnchecked(double s);
-  // Applies a planned removal to knots, points, velocities, rest state and integrals together.
-  void applyRemoval(const KnotRemoval& plan);
+  // Applies a planned removal to knots, points, velocities, rest state and integrals together, and
+  // for a rope without pins and interactions restores the momentum the velocity sweep changed by the
+  // least-kinetic-energy correction, a uniform velocity (docs/method.md §10); returns its size, m/s.
+  // O(n).
+  double applyRemoval(const KnotRemoval& plan);
+  // The momentum carried by the spans [first, last] (clamped to the rod), kg m/s.
+  Vec3 spanMomentum(int first, int last) const;
   bool isNearInteraction(double s) const;
   // rod_winch.cpp: moves the end by a rest length that keeps it inside the end span (reel-in) or
   // extends the end span (pay-out), no knot change.

@@ -21,7 +21,8 @@ struct Layout {
   int w3() const { return w1() + gauss; }
   int mass() const { return w3() + gauss; }
   int bending() const { return mass() + local * local; }
-  int gravity() const { return bending() + local * local; }
+  int curvature() const { return bending() + local * local; }
+  int gravity() const { return curvature() + local * local; }
   int stride() const { return gravity() + local; }
 };
 }  // namespace
@@ -90,6 +91,7 @@ void RodIntegrals::computeSpan(const KnotVector& knots, const PointList& restPoi
       for (int b = 0; b < local; ++b) {
         record[layout.mass() + a * local + b] += linearDensity_ * w0 * ba * basis.d[0][static_cast<size_t>(b)];
         record[layout.bending() + a * local + b] += bendingStiffness_ * w3 * ca * basis.d[2][static_cast<size_t>(b)];
+        record[layout.curvature() + a * local + b] += w3 * ca * basis.d[2][static_cast<size_t>(b)];
       }
     }
   }
@@ -245,6 +247,7 @@ SpanView RodIntegrals::span(int j) const {
   view.w3 = record + layout.w3();
   view.mass = record + layout.mass();
   view.bending = record + layout.bending();
+  view.curvature = record + layout.curvature();
   view.gravity = record + layout.gravity();
   return view;
 }

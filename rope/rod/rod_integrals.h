@@ -16,7 +16,7 @@
 // O(G d) per span instead of O(d^4), and it gives the strain at each point, which the Gauss–Newton
 // clamp of the stiffness needs (method §6, eq. 17). B2()/B4() rebuild the tensor entries for tests.
 // Also per span: the local mass matrix mu int b_a b_b l0' ds ([A] eq. 10), the local bending matrix
-// EI int b_a'' b_b'' / l0'^3 ds (bending_energy.h), the gravity weights mu int b_a l0' ds and the rest
+// EI int b_a'' b_b'' / l0'^3 ds (bending_energy.h), the same with EI = 1, the gravity weights mu int b_a l0' ds and the rest
 // length int l0' ds.
 // Not API: installed only because rope/rod/rod.h holds the integrals; it may change in any release.
 
@@ -41,6 +41,8 @@ struct SpanView {
   const double* w3 = nullptr;       // [g] = w_g J / l0'^3
   const double* mass = nullptr;     // [a * localCount + b], kg
   const double* bending = nullptr;  // [a * localCount + b], N/m
+  const double* curvature = nullptr;  // [a * localCount + b], 1/m^3: bending with EI = 1 (adaptivity's
+                                      // shape measure, defined also for a rope without bending stiffness)
   const double* gravity = nullptr;  // [a], kg
 };
 

@@ -104,6 +104,14 @@ void RodSettings::validate() const {
   }
   requirePositive("settings.removalErrorBound", removalErrorBound);
   requirePositive("settings.removalVelocityErrorBound", removalVelocityErrorBound);
+  if (removalCriterion != RemovalCriterion::kPolygon && removalCriterion != RemovalCriterion::kMechanical) {
+    throw InvalidArgument("settings.removalCriterion", std::to_string(static_cast<int>(removalCriterion)),
+                          "is not a RemovalCriterion");
+  }
+  requirePositive("settings.removalRelativeError", removalRelativeError);
+  if (!(removalRelativeError < 1.0)) {
+    throw InvalidArgument("settings.removalRelativeError", formatValue(removalRelativeError), "must be < 1");
+  }
   requirePositive("settings.minKnotSpacing", minKnotSpacing);
   // Derived quantities must be usable too (e.g. a radius so small that EA underflows to 0), and
   // computing them must not overflow (a radius of 1e200 m): checked in long double first, whose range

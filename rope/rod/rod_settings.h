@@ -52,6 +52,27 @@ enum class TimeIntegrator {
   kBackwardEuler,
 };
 
+// Which test a knot removal must pass (docs/method.md §10).
+enum class RemovalCriterion {
+  // [A]/[B]: the control polygon is straight around the knot (removeAngle) and the curve, the rest
+  // curve and the velocity field move by at most the absolute bounds. A small vibration moves
+  // nothing by much, so it is coarsened away (measured from 16 control points: the third mode of a
+  // taut string 22 % low at 5-8 points, of a rope hanging from one end 29 % high at 5-6; tip-loaded
+  // cantilevers up to 1.0e-3 L off the elastica at 6-10 points, against 4e-5 L at 16).
+  kPolygon,
+  // kPolygon, and the coarser spline must represent the state's mechanics over the spans the
+  // removal changes (rope/rod/adaptivity.h, docs/method.md §10): the velocity field (in the mass norm
+  // and in its curvature) and the internal energy (bending, and the tension's geometric stiffness)
+  // may each change by at most removalRelativeError of their own size there. A straight, still or
+  // rigidly moving rope is coarsened as before; a vibrating or loaded one keeps the knots its motion
+  // and its internal forces need (measured: modes and cantilevers as at fixed resolution).
+  // Not yet the default: measured as the default, ropes in contact kept the knots inserted at their
+  // contacts (a resting rope 24 control points instead of at most 16), a dropped pile drifted 7.5e-4
+  // (its test allows 5e-4), a rope on a capstan crept at 3.3e-4 m/s (3e-7 allowed) and the knot
+  // scene removed no knot: contact jitter is far above its floors (docs/method.md §10).
+  kMechanical,
+};
+
 struct RodSettings {
   // Sentinel values: derive the quantity from the others (see effective*() below).
   static constexpr double kDerived = -1.0;
@@ -92,11 +113,22 @@ struct RodSettings {
   double removeAngle = 160.0 * 3.14159265358979323846 / 180.0;  // rad (c = 0.030)
   // A knot is removed only if the curve (and the rest curve) move by at most this much. m, > 0.
   double removalErrorBound = 1.0e-4;
-  // ... and only if the velocity field moves by at most this much (m/s, > 0), which also bounds the
-  // momentum a removal can change by (rod mass times this). Without it a removal in a part of the
-  // rope whose motion the coarser spline cannot carry (an impact, a whip) changed a moving rope's
-  // momentum by 2%.
+  // ... and only if the velocity field moves by at most this much (m/s, > 0). Without it a removal in
+  // a part of the rope whose motion the coarser spline cannot carry (an impact, a whip) changed that
+  // motion (and, before removal restored momentum, a moving rope's momentum by 2%).
   double removalVelocityErrorBound = 1.0e-3;
+  RemovalCriterion removalCriterion = RemovalCriterion::kPolygon;
+  // kMechanical's relative bound, dimensionless, in (0, 1). Each measure's L2 error over the changed
+  // spans may be this fraction of the measure's size there, plus a floor so that a field that is
+  // zero (a still or straight rope) does not block removal by rounding: this fraction of
+  // removalVelocityErrorBound (velocity, m/s) and of removalErrorBound / l^2 (curvature, 1/m),
+  // l = the rest length of the changed spans. Not used by kPolygon.
+  // Why 1e-4: the test sees one instant, and a vibrating rope's state passes it now and then when
+  // its modes happen to combine into a smoother field. Measured, first three modes of a taut string
+  // and of a rope hanging from one end, from 16 control points (fixed 16: within 0.07 % and 0.42 %):
+  // 1e-4 within 0.13 % and 0.41 %, 3e-4 within 0.48 % and 0.48 %; straight and still, both ropes are
+  // coarsened to 4 control points either way.
+  double removalRelativeError = 1.0e-4;
   // No knot span is split below twice this rest length, and no interaction knot is placed closer
   // than this to an existing knot (about a rope diameter: finer spans resolve nothing physical, see
   // StretchingQuadrature::kLockingFree). m, > 0.

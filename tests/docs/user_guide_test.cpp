@@ -94,6 +94,10 @@ TEST(UserGuide, RodSettings) {
        field("maxControlPoints", &S::maxControlPoints), field("insertAngle", &S::insertAngle),
        field("removeAngle", &S::removeAngle), field("removalErrorBound", &S::removalErrorBound),
        field("removalVelocityErrorBound", &S::removalVelocityErrorBound),
+       enumField("removalCriterion", &S::removalCriterion,
+                 {{RemovalCriterion::kPolygon, "RemovalCriterion::kPolygon"},
+                  {RemovalCriterion::kMechanical, "RemovalCriterion::kMechanical"}}),
+       field("removalRelativeError", &S::removalRelativeError),
        field("minKnotSpacing", &S::minKnotSpacing)},
       [](const S& settings) { settings.validate(); }});
 }

@@ -8,7 +8,8 @@
 //
 // Categories (the table in kCases has one row per call; the name of each ctest says which):
 //   rope/ settings      RodSettings: every numeric field NaN, infinite, zero or negative, counts and
-//                       degree out of range, a stretchingQuadrature outside the enum, angles unordered,
+//                       degree out of range, a stretchingQuadrature or removalCriterion outside the
+//                       enum, removalRelativeError outside (0, 1), angles unordered,
 //                       a radius whose derived area overflows.
 //   rope/ Rod           fromSegment with a == b or NaN ends; fromPolyline with one point or
 //                       coincident points; position/strain/pin/addForce/addImpulse/addSpring/
@@ -263,6 +264,16 @@ std::vector<Case> allCases() {
                  [](RodSettings& s) { s.removalErrorBound = 0; }),
       rodSetting("rod removalVelocityErrorBound NaN", "settings.removalVelocityErrorBound", "nan",
                  [](RodSettings& s) { s.removalVelocityErrorBound = kNaN; }),
+      rodSetting("rod removalCriterion out of enum", "settings.removalCriterion", "9",
+                 [](RodSettings& s) { s.removalCriterion = static_cast<RemovalCriterion>(9); }),
+      rodSetting("rod removalRelativeError NaN", "settings.removalRelativeError", "nan",
+                 [](RodSettings& s) { s.removalRelativeError = kNaN; }),
+      rodSetting("rod removalRelativeError 0", "settings.removalRelativeError", "0",
+                 [](RodSettings& s) { s.removalRelativeError = 0.0; }),
+      rodSetting("rod removalRelativeError 1", "settings.removalRelativeError", "1",
+                 [](RodSettings& s) { s.removalRelativeError = 1.0; }),
+      rodSetting("rod removalRelativeError infinite", "settings.removalRelativeError", "inf",
+                 [](RodSettings& s) { s.removalRelativeError = kInf; }),
       rodSetting("rod minKnotSpacing negative", "settings.minKnotSpacing", "-0.001",
                  [](RodSettings& s) { s.minKnotSpacing = -0.001; }),
 

@@ -302,6 +302,8 @@ const std::vector<Mutation<RodSettings>>& rodMutations() {
       [](RodSettings& s, Random& r) { s.removeAngle = r.wild(); },
       [](RodSettings& s, Random& r) { s.removalErrorBound = r.wild(); },
       [](RodSettings& s, Random& r) { s.removalVelocityErrorBound = r.wild(); },
+      [](RodSettings& s, Random& r) { s.removalCriterion = static_cast<RemovalCriterion>(r.below(4)); },
+      [](RodSettings& s, Random& r) { s.removalRelativeError = r.wild(); },
       [](RodSettings& s, Random& r) { s.minKnotSpacing = r.wild(); },
   };
   return m;

@@ -110,7 +110,7 @@ TEST(SceneFileDocs, EverySettingsFieldIsAKey) {
 bool sameSettings(const RopeDescription& a, const RopeDescription& b) {
   const RodSettings &r = a.rod, &s = b.rod;
   const bullet::BulletRopeSettings &p = a.bridge, &q = b.bridge;
-  static_assert(docs::fieldCount<RodSettings>() == 21 && docs::fieldCount<bullet::BulletRopeSettings>() == 24,
+  static_assert(docs::fieldCount<RodSettings>() == 23 && docs::fieldCount<bullet::BulletRopeSettings>() == 24,
                 "compare the new field here");
   return r.restLength == s.restLength && r.radius == s.radius && r.linearDensity == s.linearDensity &&
          r.materialDensity == s.materialDensity && r.youngsModulus == s.youngsModulus &&
@@ -119,7 +119,8 @@ bool sameSettings(const RopeDescription& a, const RopeDescription& b) {
          r.initialControlPoints == s.initialControlPoints && r.stretchingQuadrature == s.stretchingQuadrature &&
          r.adaptive == s.adaptive && r.minControlPoints == s.minControlPoints && r.maxControlPoints == s.maxControlPoints &&
          r.insertAngle == s.insertAngle && r.removeAngle == s.removeAngle && r.removalErrorBound == s.removalErrorBound &&
-         r.removalVelocityErrorBound == s.removalVelocityErrorBound && r.minKnotSpacing == s.minKnotSpacing &&
+         r.removalVelocityErrorBound == s.removalVelocityErrorBound && r.removalCriterion == s.removalCriterion &&
+         r.removalRelativeError == s.removalRelativeError && r.minKnotSpacing == s.minKnotSpacing &&
          p.lineContactStiffness == q.lineContactStiffness && p.lineContactDamping == q.lineContactDamping &&
          p.lineSpeculativeDamping == q.lineSpeculativeDamping && p.contactQuadraturePoints == q.contactQuadraturePoints &&
          p.concentratedContactRatio == q.concentratedContactRatio && p.friction == q.friction &&

@@ -156,8 +156,10 @@ TEST(RodEnergy, WithAdaptivityMomentumChangesOnlyByWhatKnotRemovalsMayChange) {
   }
   EXPECT_GT(insertions, 0);
   EXPECT_GT(removals, 0);
-  // Measured: drift 2.6e-5 kg m/s (0.26 % of |p|) against the removals' allowance 5.4e-4 kg m/s.
+  // Measured: drift 2.6e-5 kg m/s (0.26 % of |p|) against the removals' allowance 5.4e-4 kg m/s
+  // before removal restored the momentum it changes (docs/method.md §10); now rounding only.
   EXPECT_LE(worst, allowance + 1e-11 * initial.norm());
+  EXPECT_LE(worst, 1e-10 * initial.norm());
   std::printf("[momentum, adaptive] |p0| %.4g kg m/s, worst drift %.3g, removal allowance %.3g, %d insertions, %d "
               "removals\n", initial.norm(), worst, allowance, insertions, removals);
 }

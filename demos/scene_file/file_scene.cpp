@@ -112,6 +112,23 @@ std::unique_ptr<btCollisionShape> convexOrPlaneShape(const BodyDescription& body
   return shape;
 }
 
+// A distributed force's [s0, s1] on the rope as built, checked before simulating (as
+// RopeObject::applyDistributedForce checks it when the force is applied).
+void checkForceStretch(const bullet::RopeObject& rope, const EventDescription& event) {
+  const double s0 = FileScene::parameter(rope, event.s0);
+  const double s1 = FileScene::parameter(rope, event.s1);
+  if (s0 < rope.rod().beginParameter() || s0 > rope.rod().endParameter()) {
+    throw SceneFileError(event.path + ".s0", formatValue(s0),
+                         "must be on the rope, in [" + formatValue(rope.rod().beginParameter()) + ", " +
+                             formatValue(rope.rod().endParameter()) + "]");
+  }
+  if (s1 > rope.rod().endParameter()) {
+    throw SceneFileError(event.path + ".s1", formatValue(s1),
+                         "must be on the rope, <= its end " + formatValue(rope.rod().endParameter()));
+  }
+  if (!(s1 > s0)) throw SceneFileError(event.path + ".s1", formatValue(s1), "must be > s0 = " + formatValue(s0));
+}
+
 }  // namespace
 
 btTransform keyframePose(const std::vector<Keyframe>& keyframes, double t) {
@@ -158,6 +175,7 @@ FileScene::FileScene(SceneDescription description, bool checksEnabled)
     if (event.kind == EventDescription::Kind::kCut || event.kind == EventDescription::Kind::kRopeForce) {
       atPath(event.path, [&] { (void)rope->rod().position(parameter(*rope, event.s)); });
     }
+    if (event.kind == EventDescription::Kind::kRopeDistributedForce) checkForceStretch(*rope, event);
     if (event.kind == EventDescription::Kind::kRelease && !attachmentId(event.rope, event.attachment)) {
       throw SceneFileError(event.path + ".attachment", "\"" + event.attachment + "\"", "the rope has no pin or attachment of that name");
     }
@@ -334,6 +352,11 @@ void FileScene::applyEvent(const EventDescription& event) {
         rope.applyForce(parameter(rope, event.s), toBullet(event.vector));
         break;
       }
+      case EventDescription::Kind::kRopeDistributedForce: {
+        bullet::RopeObject& rope = *entry(event.rope).rope;
+        rope.applyDistributedForce(parameter(rope, event.s0), parameter(rope, event.s1), toBullet(event.vector));
+        break;
+      }
       case EventDescription::Kind::kBodyForce: {
         btRigidBody* body = bodies_.at(event.body);
         body->applyCentralForce(toBullet(event.vector));
@@ -349,7 +372,9 @@ void FileScene::applyScript() {
   const double t = time();  // the step about to run covers [t, t + h]
   for (std::size_t i = 0; i < description_.events.size(); ++i) {
     const EventDescription& event = description_.events[i];
-    const bool force = event.kind == EventDescription::Kind::kRopeForce || event.kind == EventDescription::Kind::kBodyForce;
+    const bool force = event.kind == EventDescription::Kind::kRopeForce ||
+                       event.kind == EventDescription::Kind::kRopeDistributedForce ||
+                       event.kind == EventDescription::Kind::kBodyForce;
     if (force) {
       // A force acts in the steps that start in [time, until); Bullet clears body forces after each
       // stepSimulation and a rope's load lasts one substep, so it is applied again every step.

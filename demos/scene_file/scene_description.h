@@ -124,14 +124,16 @@ struct RopeDescription {
 
 // Something that happens at a time (forces: over [time, until)).
 struct EventDescription {
-  enum class Kind { kCut, kRopeForce, kBodyForce, kBodyVelocity, kRelease };
+  enum class Kind { kCut, kRopeForce, kRopeDistributedForce, kBodyForce, kBodyVelocity, kRelease };
   Kind kind = Kind::kCut;
   std::string path;  // where it is in the file, for messages
   double time = 0.0;
   double until = 0.0;  // forces: end of the interval, s (> time)
   std::string rope, body, attachment;
   RopeParameter s;
-  Vec3 vector = Vec3::Zero();  // force (N) or linear velocity (m/s)
+  RopeParameter s0{RopeParameter::Kind::kBegin, 0.0};  // distributed force: over [s0, s1] of the rope
+  RopeParameter s1{RopeParameter::Kind::kEnd, 0.0};
+  Vec3 vector = Vec3::Zero();  // force (N), force per length (N/m of rest length) or linear velocity (m/s)
   Vec3 angular = Vec3::Zero(); // body velocity: angular velocity, rad/s
   std::string newName;         // cut: the name of the piece beyond s
 };

@@ -459,13 +459,27 @@ void requireBody(const Names& names, const JsonFields& fields) {
   if (names.bodies.count(body) == 0) throw SceneFileError(fields.pathOf("body"), jsonText(fields.at("body")), "no body of that name");
 }
 
+// A distributed force's stretch of rope: s0 and s1 ("begin" and "end" when left out), s1 after s0
+// where both are numbers (the rope's own range is checked once it is built).
+void readForceStretch(const JsonFields& fields, EventDescription& event) {
+  if (fields.has("s0")) event.s0 = readParameter(fields, "s0");
+  if (fields.has("s1")) event.s1 = readParameter(fields, "s1");
+  const bool numbers = event.s0.kind == RopeParameter::Kind::kValue && event.s1.kind == RopeParameter::Kind::kValue;
+  const bool backwards = event.s0.kind == RopeParameter::Kind::kEnd || event.s1.kind == RopeParameter::Kind::kBegin;
+  if ((numbers && !(event.s1.value > event.s0.value)) || backwards) {
+    const std::string key = fields.has("s1") ? "s1" : "s0";
+    throw SceneFileError(fields.pathOf(key), jsonText(fields.at(key)), "must give s1 > s0");
+  }
+}
+
 EventDescription readEvent(const JsonFields& fields, Names& names) {
   EventDescription event;
   event.path = fields.path();
-  const std::string type = fields.choice("type", {"cut", "force", "velocity", "release"}, "");
+  const std::string type = fields.choice("type", {"cut", "force", "distributedForce", "velocity", "release"}, "");
   event.time = readTime(fields, "time", 0.0);
   if (!fields.has("time")) fields.at("time");
   const std::string kind = "a " + type + " event";
+  if (type != "distributedForce") forbid(fields, {"s0", "s1", "forcePerLength"}, kind);
   if (type == "cut") {
     event.kind = EventDescription::Kind::kCut;
     forbid(fields, {"until", "body", "attachment", "force", "linearVelocity", "angularVelocity"}, kind);
@@ -476,18 +490,26 @@ EventDescription readEvent(const JsonFields& fields, Names& names) {
     if (!names.ropes.insert(event.newName).second && !event.newName.empty()) {
       throw SceneFileError(fields.pathOf("name"), jsonText(fields.at("name")), "another rope has this name");
     }
-  } else if (type == "force") {
+  } else if (type == "force" || type == "distributedForce") {
     forbid(fields, {"attachment", "linearVelocity", "angularVelocity", "name"}, kind);
-    event.vector = fields.vec3("force");
     event.until = fields.number("until");
     if (!(event.until > event.time)) throw SceneFileError(fields.pathOf("until"), jsonText(fields.at("until")), "must be later than 'time'");
-    if (fields.has("rope")) {
+    if (type == "distributedForce") {
+      event.kind = EventDescription::Kind::kRopeDistributedForce;
+      forbid(fields, {"body", "s", "force"}, kind);
+      event.vector = fields.vec3("forcePerLength");
+      requireRope(names, fields);
+      event.rope = fields.string("rope");
+      readForceStretch(fields, event);
+    } else if (fields.has("rope")) {
+      event.vector = fields.vec3("force");
       event.kind = EventDescription::Kind::kRopeForce;
       forbid(fields, {"body"}, "a force on a rope");
       requireRope(names, fields);
       event.rope = fields.string("rope");
       event.s = readParameter(fields, "s");
     } else {
+      event.vector = fields.vec3("force");
       event.kind = EventDescription::Kind::kBodyForce;
       forbid(fields, {"s"}, "a force on a body");
       requireBody(names, fields);

@@ -90,10 +90,18 @@ std::unique_ptr<btCollisionShape> convexOrPlaneShape(const BodyDescription& body
   switch (body.shape) {
     case BodyDescription::Shape::kBox: shape = std::make_unique<btBoxShape>(toBullet(body.halfExtents)); break;
     case BodyDescription::Shape::kSphere: shape = std::make_unique<btSphereShape>(static_cast<btScalar>(body.radius)); break;
-    case BodyDescription::Shape::kCapsule:
-      shape = std::make_unique<btCapsuleShape>(static_cast<btScalar>(body.radius), static_cast<btScalar>(body.height));
+    case BodyDescription::Shape::kCapsule: {
+      const btScalar radius = static_cast<btScalar>(body.radius), height = static_cast<btScalar>(body.height);
+      if (body.axis == 0) shape = std::make_unique<btCapsuleShapeX>(radius, height);
+      if (body.axis == 1) shape = std::make_unique<btCapsuleShape>(radius, height);
+      if (body.axis == 2) shape = std::make_unique<btCapsuleShapeZ>(radius, height);
       break;
-    case BodyDescription::Shape::kCylinder: shape = std::make_unique<btCylinderShape>(toBullet(body.halfExtents)); break;
+    }
+    case BodyDescription::Shape::kCylinder:
+      if (body.axis == 0) shape = std::make_unique<btCylinderShapeX>(toBullet(body.halfExtents));
+      if (body.axis == 1) shape = std::make_unique<btCylinderShape>(toBullet(body.halfExtents));
+      if (body.axis == 2) shape = std::make_unique<btCylinderShapeZ>(toBullet(body.halfExtents));
+      break;
     case BodyDescription::Shape::kPlane:
       shape = std::make_unique<btStaticPlaneShape>(toBullet(body.normal), static_cast<btScalar>(body.offset));
       break;
@@ -130,6 +138,11 @@ void checkForceStretch(const bullet::RopeObject& rope, const EventDescription& e
 }
 
 }  // namespace
+
+btVector3 FileScene::OwnGravity::at(double t) const {
+  const double ramp = rampTime > 0.0 ? std::min(1.0, t / rampTime) : 1.0;
+  return gravity * static_cast<btScalar>(ramp);
+}
 
 btTransform keyframePose(const std::vector<Keyframe>& keyframes, double t) {
   btTransform pose;
@@ -236,6 +249,12 @@ void FileScene::buildBody(const BodyDescription& body) {
     if (!body.canSleep) added->setActivationState(DISABLE_DEACTIVATION);
     added->setLinearVelocity(toBullet(body.linearVelocity));
     added->setAngularVelocity(toBullet(body.angularVelocity));
+    if (body.gravity) {
+      // Its own gravity (e.g. a load hanging over an ideal pulley), set every step (applyScript).
+      added->setFlags(added->getFlags() | BT_DISABLE_WORLD_GRAVITY);
+      ownGravity_.push_back({added, toBullet(*body.gravity), body.gravityRampTime});
+      added->setGravity(ownGravity_.back().at(0.0));
+    }
   }
   bodies_[body.name] = added;
 }
@@ -398,6 +417,8 @@ void FileScene::applyScript() {
       }
     });
   }
+  // Loads that ramp up: their value at the step's end, so the full load is on from the ramp's end.
+  for (const OwnGravity& own : ownGravity_) own.body->setGravity(own.at(static_cast<double>(steps_ + 1) * h));
   for (auto& [body, keyframes] : kinematicBodies_) body->setWorldTransform(keyframePose(keyframes, t + h));
   for (const MovingPin& pin : movingPins_) {
     bullet::RopeObject& rope = *entry(pin.rope).rope;

@@ -38,9 +38,10 @@ struct BodyDescription {
   std::string name;
   Shape shape = Shape::kBox;
   Motion motion = Motion::kStatic;
-  Vec3 halfExtents = Vec3::Zero();  // box, cylinder (y is the cylinder's axis), m
+  Vec3 halfExtents = Vec3::Zero();  // box, cylinder (the component along `axis` is the cylinder's half length), m
   double radius = 0.0;              // sphere, capsule, m
-  double height = 0.0;              // capsule: distance between the two hemisphere centres (y axis), m
+  double height = 0.0;              // capsule: distance between the two hemisphere centres (along its axis), m
+  int axis = 1;                     // cylinder, capsule: their axis in the body frame, 0 x, 1 y, 2 z
   Vec3 normal{0.0, 1.0, 0.0};       // plane: unit normal
   double offset = 0.0;              // plane: n . x = offset, m
   std::string mesh;                 // mesh: the OBJ file as the scene file names it
@@ -59,6 +60,8 @@ struct BodyDescription {
   double friction = 0.5;            // Bullet's body coefficient (combined with the rope's), >= 0
   double restitution = 0.0;         // >= 0
   bool canSleep = false;            // dynamic: Bullet may deactivate it when it comes to rest
+  std::optional<Vec3> gravity;      // dynamic: its own gravity instead of the world's, m/s^2
+  double gravityRampTime = 0.0;     // s: its own gravity grows linearly from zero over this time
   std::vector<Keyframe> keyframes;  // kinematic bodies: the scripted pose over time
 };
 

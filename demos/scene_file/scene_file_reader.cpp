@@ -238,6 +238,12 @@ void readShapeGeometry(const JsonFields& fields, const std::string& shape, const
                        BodyDescription& body) {
   const std::string kind = "a " + shape;
   if (shape != "mesh") forbid(fields, {"mesh", "meshType", "scale", "margin"}, kind);
+  if (shape == "cylinder" || shape == "capsule") {
+    const std::string axis = fields.choice("axis", {"x", "y", "z"}, "y");
+    body.axis = axis == "x" ? 0 : axis == "y" ? 1 : 2;
+  } else {
+    forbid(fields, {"axis"}, kind);
+  }
   if (shape == "mesh") {
     body.shape = BodyDescription::Shape::kMesh;
     forbid(fields, {"halfExtents", "radius", "height", "normal", "offset"}, kind);
@@ -284,9 +290,9 @@ BodyDescription readBody(const JsonFields& fields, const std::string& directory)
   if (shape != "bulletFile") forbid(fields, {"file"}, "a " + shape);
   if (shape == "bulletFile") {
     // The file's bodies keep their own shapes, masses, poses and materials.
-    forbid(fields, {"motion", "halfExtents", "radius", "height", "normal", "offset", "mesh", "meshType", "scale", "margin",
-                    "mass", "position", "rotation", "linearVelocity", "angularVelocity", "friction", "restitution",
-                    "canSleep", "keyframes"},
+    forbid(fields, {"motion", "halfExtents", "radius", "height", "axis", "normal", "offset", "mesh", "meshType", "scale",
+                    "margin", "mass", "position", "rotation", "linearVelocity", "angularVelocity", "friction",
+                    "restitution", "canSleep", "gravity", "gravityRampTime", "keyframes"},
            "a bulletFile (its bodies are as the file has them)");
     body.shape = BodyDescription::Shape::kBulletFile;
     readBulletFile(fields, directory, body);
@@ -304,8 +310,14 @@ BodyDescription readBody(const JsonFields& fields, const std::string& directory)
     throw SceneFileError(fields.pathOf("mass"), jsonText(fields.at("mass")), "only a dynamic body has a mass");
   }
   if (body.motion != BodyDescription::Motion::kDynamic) {
-    forbid(fields, {"linearVelocity", "angularVelocity", "canSleep"}, "a " + motion + " body");
+    forbid(fields, {"linearVelocity", "angularVelocity", "canSleep", "gravity", "gravityRampTime"}, "a " + motion + " body");
   }
+  if (fields.has("gravity")) body.gravity = fields.vec3("gravity");
+  if (fields.has("gravityRampTime") && !body.gravity) {
+    throw SceneFileError(fields.pathOf("gravityRampTime"), jsonText(fields.at("gravityRampTime")), "needs the body's own 'gravity'");
+  }
+  body.gravityRampTime = fields.number("gravityRampTime", 0.0);
+  requireNonNegativeKey(fields, "gravityRampTime", body.gravityRampTime);
   body.canSleep = fields.boolean("canSleep", false);
   if (body.motion != BodyDescription::Motion::kKinematic) forbid(fields, {"keyframes"}, "a " + motion + " body (only kinematic bodies follow keyframes)");
   body.position = fields.vec3("position", body.position);

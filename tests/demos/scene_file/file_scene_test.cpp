@@ -5,6 +5,9 @@
 
 #include <string>
 
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
+
 #include "demos/scene_file/file_scene.h"
 #include "demos/scene_file/scene_file_reader.h"
 
@@ -44,6 +47,41 @@ TEST(FileSceneEvents, DistributedForceDefaultsToTheWholeRope) {
   EXPECT_EQ(rope.rod().momentum().z(), 0.0) << "not before 'time'";
   for (int i = 0; i < 10; ++i) scene.step();
   EXPECT_NEAR(rope.rod().momentum().z(), -3.0 * rope.rod().restLength() * 0.05, 1e-12);
+}
+
+// A body's own gravity, ramped up over gravityRampTime: each step takes its value at the step's end,
+// so with symplectic Euler v_n = h sum_k g min(1, k h / T): after 20 steps of 0.01 s with T = 0.1 s,
+// 2 m/s^2 x 0.01 s x (5.5 + 10) = 0.31 m/s; the world's gravity does not act on it.
+TEST(FileSceneBodies, OwnGravityRampsUpAndReplacesTheWorlds) {
+  const std::string text = R"({"timeStep": 0.01,
+    "bodies": [{"name": "load", "shape": "sphere", "radius": 0.05, "motion": "dynamic", "mass": 0.7,
+                "gravity": [2, 0, 0], "gravityRampTime": 0.1}]})";
+  FileScene scene(readSceneText(text));
+  const btRigidBody& load = *scene.findBody("load");
+  scene.step();
+  EXPECT_NEAR(load.getGravity().x(), 0.2, 1e-15) << "a tenth of the way up the ramp after the first step";
+  for (int i = 1; i < 20; ++i) scene.step();
+  EXPECT_NEAR(load.getLinearVelocity().x(), 0.31, 1e-12);
+  EXPECT_EQ(load.getLinearVelocity().y(), 0.0);
+  EXPECT_EQ(load.getGravity().x(), 2.0);
+}
+
+// `axis` picks Bullet's cylinder and capsule along x, y or z.
+TEST(FileSceneBodies, CylinderAndCapsuleAxes) {
+  const std::string text = R"({"bodies": [
+    {"name": "x", "shape": "cylinder", "axis": "x", "halfExtents": [0.3, 0.1, 0.1]},
+    {"name": "y", "shape": "cylinder", "halfExtents": [0.1, 0.3, 0.1], "position": [1, 0, 0]},
+    {"name": "z", "shape": "capsule", "axis": "z", "radius": 0.1, "height": 0.4, "position": [2, 0, 0]}]})";
+  FileScene scene(readSceneText(text));
+  const auto* x = dynamic_cast<const btCylinderShape*>(scene.findBody("x")->getCollisionShape());
+  const auto* y = dynamic_cast<const btCylinderShape*>(scene.findBody("y")->getCollisionShape());
+  const auto* z = dynamic_cast<const btCapsuleShape*>(scene.findBody("z")->getCollisionShape());
+  ASSERT_TRUE(x && y && z);
+  EXPECT_EQ(x->getUpAxis(), 0);
+  EXPECT_EQ(y->getUpAxis(), 1);
+  EXPECT_EQ(z->getUpAxis(), 2);
+  EXPECT_NEAR(x->getHalfExtentsWithMargin().x(), 0.3, 1e-12);  // the half length, along the axis
+  EXPECT_NEAR(z->getHalfHeight(), 0.2, 1e-12);
 }
 
 }  // namespace

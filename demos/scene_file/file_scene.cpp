@@ -158,7 +158,8 @@ btTransform keyframePose(const std::vector<Keyframe>& keyframes, double t) {
   }
   const Keyframe& a = keyframes[next - 1];
   const Keyframe& b = keyframes[next];
-  const double u = (t - a.time) / (b.time - a.time);
+  double u = (t - a.time) / (b.time - a.time);
+  if (a.interpolation == Keyframe::Interpolation::kSmoothstep) u = u * u * (3.0 - 2.0 * u);  // smoothstep
   pose.setOrigin(toBullet(Vec3(a.position + u * (b.position - a.position))));
   pose.setRotation(toBullet(a.rotation).slerp(toBullet(b.rotation), static_cast<btScalar>(u)));
   return pose;
@@ -419,11 +420,13 @@ void FileScene::applyScript() {
   }
   // Loads that ramp up: their value at the step's end, so the full load is on from the ramp's end.
   for (const OwnGravity& own : ownGravity_) own.body->setGravity(own.at(static_cast<double>(steps_ + 1) * h));
-  for (auto& [body, keyframes] : kinematicBodies_) body->setWorldTransform(keyframePose(keyframes, t + h));
+  // Poses at the step's end, the time the step brings the scene to (counted, not summed: no drift).
+  const double end = static_cast<double>(steps_ + 1) * h;
+  for (auto& [body, keyframes] : kinematicBodies_) body->setWorldTransform(keyframePose(keyframes, end));
   for (const MovingPin& pin : movingPins_) {
     bullet::RopeObject& rope = *entry(pin.rope).rope;
     for (const bullet::Attachment& attachment : rope.attachments()) {
-      if (attachment.id == pin.id) rope.setAttachmentTarget(pin.id, keyframePose(pin.keyframes, t + h).getOrigin());
+      if (attachment.id == pin.id) rope.setAttachmentTarget(pin.id, keyframePose(pin.keyframes, end).getOrigin());
     }
   }
 }

@@ -23,12 +23,16 @@
 
 namespace rope::demos {
 
-// A pose at a time, for kinematic bodies and moving pins; linearly interpolated between keyframes
-// (positions linearly, rotations by slerp), held before the first and after the last.
+// A pose at a time, for kinematic bodies and moving pins; interpolated between keyframes (positions
+// linearly, rotations by slerp, in the fraction u of the interval or in smoothstep(u)), held before the
+// first and after the last.
 struct Keyframe {
+  enum class Interpolation { kLinear, kSmoothstep };
   double time = 0.0;                            // s
   Vec3 position = Vec3::Zero();                 // m, world frame
   Eigen::Vector4d rotation{0.0, 0.0, 0.0, 1.0}; // unit quaternion (x, y, z, w), as btQuaternion
+  // From this keyframe to the next: u itself, or u^2 (3 - 2u), which starts and stops at rest.
+  Interpolation interpolation = Interpolation::kLinear;
 };
 
 struct BodyDescription {

@@ -15,7 +15,7 @@ const std::vector<SceneFileKeyTable>& sceneFileKeyTables() {
        {"name", "shape", "motion", "halfExtents", "radius", "height", "axis", "normal", "offset", "mesh", "meshType", "scale", "margin", "file",
         "mass", "position", "rotation", "linearVelocity", "angularVelocity", "friction", "restitution", "canSleep", "gravity",
         "gravityRampTime", "keyframes"}},
-      {"keyframe", {"time", "position", "rotation"}},
+      {"keyframe", {"time", "position", "rotation", "interpolation"}},
       {"rope", {"name", "settings", "shape", "pins", "attachments", "clamps", "winches", "showControlPolygon"}},
       {"rope.settings",
        {// RodSettings (rope/rod/rod_settings.h)

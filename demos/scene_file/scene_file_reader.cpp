@@ -69,6 +69,9 @@ std::vector<Keyframe> readKeyframes(const JsonFields& fields, bool withRotation)
       throw SceneFileError(frame.pathOf("rotation"), "", "a pin's keyframes have positions only");
     }
     keyframe.rotation = readRotation(frame, "rotation");
+    keyframe.interpolation = frame.choice("interpolation", {"linear", "smoothstep"}, "linear") == "smoothstep"
+                                 ? Keyframe::Interpolation::kSmoothstep
+                                 : Keyframe::Interpolation::kLinear;
     keyframes.push_back(keyframe);
   }
   return keyframes;

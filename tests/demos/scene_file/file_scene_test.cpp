@@ -3,7 +3,9 @@
 // analytic values.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
@@ -47,6 +49,33 @@ TEST(FileSceneEvents, DistributedForceDefaultsToTheWholeRope) {
   EXPECT_EQ(rope.rod().momentum().z(), 0.0) << "not before 'time'";
   for (int i = 0; i < 10; ++i) scene.step();
   EXPECT_NEAR(rope.rod().momentum().z(), -3.0 * rope.rod().restLength() * 0.05, 1e-12);
+}
+
+// Keyframes: linear or smoothstep from one to the next, held outside them.
+TEST(FileSceneKeyframes, LinearAndSmoothstep) {
+  Keyframe a, b;
+  a.time = 1.0;
+  a.position = Vec3(0.0, 2.0, 0.0);
+  b.time = 3.0;
+  b.position = Vec3(4.0, 2.0, 0.0);
+  b.rotation = Eigen::Vector4d(0.0, std::sqrt(0.5), 0.0, std::sqrt(0.5));  // 90 degrees about y
+  const std::vector<Keyframe> linear = {a, b};
+  EXPECT_EQ(keyframePose(linear, 0.0).getOrigin().x(), 0.0) << "held before the first";
+  EXPECT_EQ(keyframePose(linear, 1.5).getOrigin().x(), 1.0);  // u = 1/4
+  EXPECT_EQ(keyframePose(linear, 9.0).getOrigin().x(), 4.0) << "held after the last";
+  a.interpolation = Keyframe::Interpolation::kSmoothstep;
+  const std::vector<Keyframe> smooth = {a, b};
+  EXPECT_EQ(keyframePose(smooth, 1.5).getOrigin().x(), 4.0 * 0.15625);  // u^2 (3 - 2u) at u = 1/4
+  EXPECT_EQ(keyframePose(smooth, 2.0).getOrigin().x(), 2.0);            // symmetric: half way at u = 1/2
+  EXPECT_EQ(keyframePose(smooth, 2.5).getOrigin().x(), 4.0 * 0.84375);
+  EXPECT_EQ(keyframePose(smooth, 3.0).getOrigin().x(), 4.0);
+  // Rotations are eased alike: a quarter of the way in time is 0.15625 of the 90 degrees.
+  const btQuaternion q = keyframePose(smooth, 1.5).getRotation();
+  EXPECT_NEAR(2.0 * std::atan2(static_cast<double>(q.y()), static_cast<double>(q.w())), 0.15625 * 0.5 * 3.14159265358979323846, 1e-12);
+  // Zero velocity at both ends: the position moves by O(dt^2) in the first and last dt.
+  const double dt = 1e-4;
+  EXPECT_LT(keyframePose(smooth, 1.0 + dt).getOrigin().x(), 4.0 * 3.0 * (dt / 2.0) * (dt / 2.0) * 1.0001);
+  EXPECT_GT(keyframePose(smooth, 3.0 - dt).getOrigin().x(), 4.0 - 4.0 * 3.0 * (dt / 2.0) * (dt / 2.0) * 1.0001);
 }
 
 // A body's own gravity, ramped up over gravityRampTime: each step takes its value at the step's end,

@@ -8,7 +8,7 @@
 namespace rope::demos {
 
 const std::vector<std::string>& builtInSceneFileNames() {
-  static const std::vector<std::string> names = {"drape", "thinbar", "pile", "rest", "cut", "winch"};
+  static const std::vector<std::string> names = {"drape", "thinbar", "pile", "rest", "cut", "winch", "floorpull", "capstan", "crane"};
   return names;
 }
 

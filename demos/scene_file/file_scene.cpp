@@ -90,10 +90,18 @@ std::unique_ptr<btCollisionShape> convexOrPlaneShape(const BodyDescription& body
   switch (body.shape) {
     case BodyDescription::Shape::kBox: shape = std::make_unique<btBoxShape>(toBullet(body.halfExtents)); break;
     case BodyDescription::Shape::kSphere: shape = std::make_unique<btSphereShape>(static_cast<btScalar>(body.radius)); break;
-    case BodyDescription::Shape::kCapsule:
-      shape = std::make_unique<btCapsuleShape>(static_cast<btScalar>(body.radius), static_cast<btScalar>(body.height));
+    case BodyDescription::Shape::kCapsule: {
+      const btScalar radius = static_cast<btScalar>(body.radius), height = static_cast<btScalar>(body.height);
+      if (body.axis == 0) shape = std::make_unique<btCapsuleShapeX>(radius, height);
+      if (body.axis == 1) shape = std::make_unique<btCapsuleShape>(radius, height);
+      if (body.axis == 2) shape = std::make_unique<btCapsuleShapeZ>(radius, height);
       break;
-    case BodyDescription::Shape::kCylinder: shape = std::make_unique<btCylinderShape>(toBullet(body.halfExtents)); break;
+    }
+    case BodyDescription::Shape::kCylinder:
+      if (body.axis == 0) shape = std::make_unique<btCylinderShapeX>(toBullet(body.halfExtents));
+      if (body.axis == 1) shape = std::make_unique<btCylinderShape>(toBullet(body.halfExtents));
+      if (body.axis == 2) shape = std::make_unique<btCylinderShapeZ>(toBullet(body.halfExtents));
+      break;
     case BodyDescription::Shape::kPlane:
       shape = std::make_unique<btStaticPlaneShape>(toBullet(body.normal), static_cast<btScalar>(body.offset));
       break;
@@ -112,7 +120,29 @@ std::unique_ptr<btCollisionShape> convexOrPlaneShape(const BodyDescription& body
   return shape;
 }
 
+// A distributed force's [s0, s1] on the rope as built, checked before simulating (as
+// RopeObject::applyDistributedForce checks it when the force is applied).
+void checkForceStretch(const bullet::RopeObject& rope, const EventDescription& event) {
+  const double s0 = FileScene::parameter(rope, event.s0);
+  const double s1 = FileScene::parameter(rope, event.s1);
+  if (s0 < rope.rod().beginParameter() || s0 > rope.rod().endParameter()) {
+    throw SceneFileError(event.path + ".s0", formatValue(s0),
+                         "must be on the rope, in [" + formatValue(rope.rod().beginParameter()) + ", " +
+                             formatValue(rope.rod().endParameter()) + "]");
+  }
+  if (s1 > rope.rod().endParameter()) {
+    throw SceneFileError(event.path + ".s1", formatValue(s1),
+                         "must be on the rope, <= its end " + formatValue(rope.rod().endParameter()));
+  }
+  if (!(s1 > s0)) throw SceneFileError(event.path + ".s1", formatValue(s1), "must be > s0 = " + formatValue(s0));
+}
+
 }  // namespace
+
+btVector3 FileScene::OwnGravity::at(double t) const {
+  const double ramp = rampTime > 0.0 ? std::min(1.0, t / rampTime) : 1.0;
+  return gravity * static_cast<btScalar>(ramp);
+}
 
 btTransform keyframePose(const std::vector<Keyframe>& keyframes, double t) {
   btTransform pose;
@@ -128,7 +158,8 @@ btTransform keyframePose(const std::vector<Keyframe>& keyframes, double t) {
   }
   const Keyframe& a = keyframes[next - 1];
   const Keyframe& b = keyframes[next];
-  const double u = (t - a.time) / (b.time - a.time);
+  double u = (t - a.time) / (b.time - a.time);
+  if (a.interpolation == Keyframe::Interpolation::kSmoothstep) u = u * u * (3.0 - 2.0 * u);  // smoothstep
   pose.setOrigin(toBullet(Vec3(a.position + u * (b.position - a.position))));
   pose.setRotation(toBullet(a.rotation).slerp(toBullet(b.rotation), static_cast<btScalar>(u)));
   return pose;
@@ -158,6 +189,7 @@ FileScene::FileScene(SceneDescription description, bool checksEnabled)
     if (event.kind == EventDescription::Kind::kCut || event.kind == EventDescription::Kind::kRopeForce) {
       atPath(event.path, [&] { (void)rope->rod().position(parameter(*rope, event.s)); });
     }
+    if (event.kind == EventDescription::Kind::kRopeDistributedForce) checkForceStretch(*rope, event);
     if (event.kind == EventDescription::Kind::kRelease && !attachmentId(event.rope, event.attachment)) {
       throw SceneFileError(event.path + ".attachment", "\"" + event.attachment + "\"", "the rope has no pin or attachment of that name");
     }
@@ -218,6 +250,12 @@ void FileScene::buildBody(const BodyDescription& body) {
     if (!body.canSleep) added->setActivationState(DISABLE_DEACTIVATION);
     added->setLinearVelocity(toBullet(body.linearVelocity));
     added->setAngularVelocity(toBullet(body.angularVelocity));
+    if (body.gravity) {
+      // Its own gravity (e.g. a load hanging over an ideal pulley), set every step (applyScript).
+      added->setFlags(added->getFlags() | BT_DISABLE_WORLD_GRAVITY);
+      ownGravity_.push_back({added, toBullet(*body.gravity), body.gravityRampTime});
+      added->setGravity(ownGravity_.back().at(0.0));
+    }
   }
   bodies_[body.name] = added;
 }
@@ -334,6 +372,11 @@ void FileScene::applyEvent(const EventDescription& event) {
         rope.applyForce(parameter(rope, event.s), toBullet(event.vector));
         break;
       }
+      case EventDescription::Kind::kRopeDistributedForce: {
+        bullet::RopeObject& rope = *entry(event.rope).rope;
+        rope.applyDistributedForce(parameter(rope, event.s0), parameter(rope, event.s1), toBullet(event.vector));
+        break;
+      }
       case EventDescription::Kind::kBodyForce: {
         btRigidBody* body = bodies_.at(event.body);
         body->applyCentralForce(toBullet(event.vector));
@@ -349,7 +392,9 @@ void FileScene::applyScript() {
   const double t = time();  // the step about to run covers [t, t + h]
   for (std::size_t i = 0; i < description_.events.size(); ++i) {
     const EventDescription& event = description_.events[i];
-    const bool force = event.kind == EventDescription::Kind::kRopeForce || event.kind == EventDescription::Kind::kBodyForce;
+    const bool force = event.kind == EventDescription::Kind::kRopeForce ||
+                       event.kind == EventDescription::Kind::kRopeDistributedForce ||
+                       event.kind == EventDescription::Kind::kBodyForce;
     if (force) {
       // A force acts in the steps that start in [time, until); Bullet clears body forces after each
       // stepSimulation and a rope's load lasts one substep, so it is applied again every step.
@@ -373,11 +418,15 @@ void FileScene::applyScript() {
       }
     });
   }
-  for (auto& [body, keyframes] : kinematicBodies_) body->setWorldTransform(keyframePose(keyframes, t + h));
+  // Loads that ramp up: their value at the step's end, so the full load is on from the ramp's end.
+  for (const OwnGravity& own : ownGravity_) own.body->setGravity(own.at(static_cast<double>(steps_ + 1) * h));
+  // Poses at the step's end, the time the step brings the scene to (counted, not summed: no drift).
+  const double end = static_cast<double>(steps_ + 1) * h;
+  for (auto& [body, keyframes] : kinematicBodies_) body->setWorldTransform(keyframePose(keyframes, end));
   for (const MovingPin& pin : movingPins_) {
     bullet::RopeObject& rope = *entry(pin.rope).rope;
     for (const bullet::Attachment& attachment : rope.attachments()) {
-      if (attachment.id == pin.id) rope.setAttachmentTarget(pin.id, keyframePose(pin.keyframes, t + h).getOrigin());
+      if (attachment.id == pin.id) rope.setAttachmentTarget(pin.id, keyframePose(pin.keyframes, end).getOrigin());
     }
   }
 }

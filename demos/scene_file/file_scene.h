@@ -67,6 +67,12 @@ class FileScene : public DemoScene {
     int id = 0;
     std::vector<Keyframe> keyframes;
   };
+  struct OwnGravity {  // a dynamic body's own gravity (BT_DISABLE_WORLD_GRAVITY), ramped up from zero
+    btRigidBody* body = nullptr;
+    btVector3 gravity;      // m/s^2
+    double rampTime = 0.0;  // s
+    btVector3 at(double t) const;  // the gravity at time t
+  };
   struct PendingWinch {
     std::string rope;
     WinchDescription winch;
@@ -86,6 +92,7 @@ class FileScene : public DemoScene {
   std::vector<RopeEntry> ropes_;
   std::vector<MovingPin> movingPins_;
   std::vector<PendingWinch> winches_;
+  std::vector<OwnGravity> ownGravity_;
   std::vector<bool> eventDone_;
   long steps_ = 0;
   SceneChecks checks_;

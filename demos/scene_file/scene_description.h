@@ -23,12 +23,16 @@
 
 namespace rope::demos {
 
-// A pose at a time, for kinematic bodies and moving pins; linearly interpolated between keyframes
-// (positions linearly, rotations by slerp), held before the first and after the last.
+// A pose at a time, for kinematic bodies and moving pins; interpolated between keyframes (positions
+// linearly, rotations by slerp, in the fraction u of the interval or in smoothstep(u)), held before the
+// first and after the last.
 struct Keyframe {
+  enum class Interpolation { kLinear, kSmoothstep };
   double time = 0.0;                            // s
   Vec3 position = Vec3::Zero();                 // m, world frame
   Eigen::Vector4d rotation{0.0, 0.0, 0.0, 1.0}; // unit quaternion (x, y, z, w), as btQuaternion
+  // From this keyframe to the next: u itself, or u^2 (3 - 2u), which starts and stops at rest.
+  Interpolation interpolation = Interpolation::kLinear;
 };
 
 struct BodyDescription {
@@ -38,9 +42,10 @@ struct BodyDescription {
   std::string name;
   Shape shape = Shape::kBox;
   Motion motion = Motion::kStatic;
-  Vec3 halfExtents = Vec3::Zero();  // box, cylinder (y is the cylinder's axis), m
+  Vec3 halfExtents = Vec3::Zero();  // box, cylinder (the component along `axis` is the cylinder's half length), m
   double radius = 0.0;              // sphere, capsule, m
-  double height = 0.0;              // capsule: distance between the two hemisphere centres (y axis), m
+  double height = 0.0;              // capsule: distance between the two hemisphere centres (along its axis), m
+  int axis = 1;                     // cylinder, capsule: their axis in the body frame, 0 x, 1 y, 2 z
   Vec3 normal{0.0, 1.0, 0.0};       // plane: unit normal
   double offset = 0.0;              // plane: n . x = offset, m
   std::string mesh;                 // mesh: the OBJ file as the scene file names it
@@ -59,6 +64,8 @@ struct BodyDescription {
   double friction = 0.5;            // Bullet's body coefficient (combined with the rope's), >= 0
   double restitution = 0.0;         // >= 0
   bool canSleep = false;            // dynamic: Bullet may deactivate it when it comes to rest
+  std::optional<Vec3> gravity;      // dynamic: its own gravity instead of the world's, m/s^2
+  double gravityRampTime = 0.0;     // s: its own gravity grows linearly from zero over this time
   std::vector<Keyframe> keyframes;  // kinematic bodies: the scripted pose over time
 };
 
@@ -124,14 +131,16 @@ struct RopeDescription {
 
 // Something that happens at a time (forces: over [time, until)).
 struct EventDescription {
-  enum class Kind { kCut, kRopeForce, kBodyForce, kBodyVelocity, kRelease };
+  enum class Kind { kCut, kRopeForce, kRopeDistributedForce, kBodyForce, kBodyVelocity, kRelease };
   Kind kind = Kind::kCut;
   std::string path;  // where it is in the file, for messages
   double time = 0.0;
   double until = 0.0;  // forces: end of the interval, s (> time)
   std::string rope, body, attachment;
   RopeParameter s;
-  Vec3 vector = Vec3::Zero();  // force (N) or linear velocity (m/s)
+  RopeParameter s0{RopeParameter::Kind::kBegin, 0.0};  // distributed force: over [s0, s1] of the rope
+  RopeParameter s1{RopeParameter::Kind::kEnd, 0.0};
+  Vec3 vector = Vec3::Zero();  // force (N), force per length (N/m of rest length) or linear velocity (m/s)
   Vec3 angular = Vec3::Zero(); // body velocity: angular velocity, rad/s
   std::string newName;         // cut: the name of the piece beyond s
 };

@@ -69,6 +69,9 @@ std::vector<Keyframe> readKeyframes(const JsonFields& fields, bool withRotation)
       throw SceneFileError(frame.pathOf("rotation"), "", "a pin's keyframes have positions only");
     }
     keyframe.rotation = readRotation(frame, "rotation");
+    keyframe.interpolation = frame.choice("interpolation", {"linear", "smoothstep"}, "linear") == "smoothstep"
+                                 ? Keyframe::Interpolation::kSmoothstep
+                                 : Keyframe::Interpolation::kLinear;
     keyframes.push_back(keyframe);
   }
   return keyframes;
@@ -242,6 +245,12 @@ void readShapeGeometry(const JsonFields& fields, const std::string& shape, const
                        BodyDescription& body) {
   const std::string kind = "a " + shape;
   if (shape != "mesh") forbid(fields, {"mesh", "meshType", "scale", "margin"}, kind);
+  if (shape == "cylinder" || shape == "capsule") {
+    const std::string axis = fields.choice("axis", {"x", "y", "z"}, "y");
+    body.axis = axis == "x" ? 0 : axis == "y" ? 1 : 2;
+  } else {
+    forbid(fields, {"axis"}, kind);
+  }
   if (shape == "mesh") {
     body.shape = BodyDescription::Shape::kMesh;
     forbid(fields, {"halfExtents", "radius", "height", "normal", "offset"}, kind);
@@ -288,9 +297,9 @@ BodyDescription readBody(const JsonFields& fields, const std::string& directory)
   if (shape != "bulletFile") forbid(fields, {"file"}, "a " + shape);
   if (shape == "bulletFile") {
     // The file's bodies keep their own shapes, masses, poses and materials.
-    forbid(fields, {"motion", "halfExtents", "radius", "height", "normal", "offset", "mesh", "meshType", "scale", "margin",
-                    "mass", "position", "rotation", "linearVelocity", "angularVelocity", "friction", "restitution",
-                    "canSleep", "keyframes"},
+    forbid(fields, {"motion", "halfExtents", "radius", "height", "axis", "normal", "offset", "mesh", "meshType", "scale",
+                    "margin", "mass", "position", "rotation", "linearVelocity", "angularVelocity", "friction",
+                    "restitution", "canSleep", "gravity", "gravityRampTime", "keyframes"},
            "a bulletFile (its bodies are as the file has them)");
     body.shape = BodyDescription::Shape::kBulletFile;
     readBulletFile(fields, directory, body);
@@ -308,8 +317,14 @@ BodyDescription readBody(const JsonFields& fields, const std::string& directory)
     throw SceneFileError(fields.pathOf("mass"), jsonText(fields.at("mass")), "only a dynamic body has a mass");
   }
   if (body.motion != BodyDescription::Motion::kDynamic) {
-    forbid(fields, {"linearVelocity", "angularVelocity", "canSleep"}, "a " + motion + " body");
+    forbid(fields, {"linearVelocity", "angularVelocity", "canSleep", "gravity", "gravityRampTime"}, "a " + motion + " body");
   }
+  if (fields.has("gravity")) body.gravity = fields.vec3("gravity");
+  if (fields.has("gravityRampTime") && !body.gravity) {
+    throw SceneFileError(fields.pathOf("gravityRampTime"), jsonText(fields.at("gravityRampTime")), "needs the body's own 'gravity'");
+  }
+  body.gravityRampTime = fields.number("gravityRampTime", 0.0);
+  requireNonNegativeKey(fields, "gravityRampTime", body.gravityRampTime);
   body.canSleep = fields.boolean("canSleep", false);
   if (body.motion != BodyDescription::Motion::kKinematic) forbid(fields, {"keyframes"}, "a " + motion + " body (only kinematic bodies follow keyframes)");
   body.position = fields.vec3("position", body.position);
@@ -463,13 +478,27 @@ void requireBody(const Names& names, const JsonFields& fields) {
   if (names.bodies.count(body) == 0) throw SceneFileError(fields.pathOf("body"), jsonText(fields.at("body")), "no body of that name");
 }
 
+// A distributed force's stretch of rope: s0 and s1 ("begin" and "end" when left out), s1 after s0
+// where both are numbers (the rope's own range is checked once it is built).
+void readForceStretch(const JsonFields& fields, EventDescription& event) {
+  if (fields.has("s0")) event.s0 = readParameter(fields, "s0");
+  if (fields.has("s1")) event.s1 = readParameter(fields, "s1");
+  const bool numbers = event.s0.kind == RopeParameter::Kind::kValue && event.s1.kind == RopeParameter::Kind::kValue;
+  const bool backwards = event.s0.kind == RopeParameter::Kind::kEnd || event.s1.kind == RopeParameter::Kind::kBegin;
+  if ((numbers && !(event.s1.value > event.s0.value)) || backwards) {
+    const std::string key = fields.has("s1") ? "s1" : "s0";
+    throw SceneFileError(fields.pathOf(key), jsonText(fields.at(key)), "must give s1 > s0");
+  }
+}
+
 EventDescription readEvent(const JsonFields& fields, Names& names) {
   EventDescription event;
   event.path = fields.path();
-  const std::string type = fields.choice("type", {"cut", "force", "velocity", "release"}, "");
+  const std::string type = fields.choice("type", {"cut", "force", "distributedForce", "velocity", "release"}, "");
   event.time = readTime(fields, "time", 0.0);
   if (!fields.has("time")) fields.at("time");
   const std::string kind = "a " + type + " event";
+  if (type != "distributedForce") forbid(fields, {"s0", "s1", "forcePerLength"}, kind);
   if (type == "cut") {
     event.kind = EventDescription::Kind::kCut;
     forbid(fields, {"until", "body", "attachment", "force", "linearVelocity", "angularVelocity"}, kind);
@@ -480,18 +509,26 @@ EventDescription readEvent(const JsonFields& fields, Names& names) {
     if (!names.ropes.insert(event.newName).second && !event.newName.empty()) {
       throw SceneFileError(fields.pathOf("name"), jsonText(fields.at("name")), "another rope has this name");
     }
-  } else if (type == "force") {
+  } else if (type == "force" || type == "distributedForce") {
     forbid(fields, {"attachment", "linearVelocity", "angularVelocity", "name"}, kind);
-    event.vector = fields.vec3("force");
     event.until = fields.number("until");
     if (!(event.until > event.time)) throw SceneFileError(fields.pathOf("until"), jsonText(fields.at("until")), "must be later than 'time'");
-    if (fields.has("rope")) {
+    if (type == "distributedForce") {
+      event.kind = EventDescription::Kind::kRopeDistributedForce;
+      forbid(fields, {"body", "s", "force"}, kind);
+      event.vector = fields.vec3("forcePerLength");
+      requireRope(names, fields);
+      event.rope = fields.string("rope");
+      readForceStretch(fields, event);
+    } else if (fields.has("rope")) {
+      event.vector = fields.vec3("force");
       event.kind = EventDescription::Kind::kRopeForce;
       forbid(fields, {"body"}, "a force on a rope");
       requireRope(names, fields);
       event.rope = fields.string("rope");
       event.s = readParameter(fields, "s");
     } else {
+      event.vector = fields.vec3("force");
       event.kind = EventDescription::Kind::kBodyForce;
       forbid(fields, {"s"}, "a force on a body");
       requireBody(names, fields);

@@ -148,29 +148,31 @@ CapstanScene::CapstanScene(const CapstanSceneSettings& settings) : settings_(set
     taut_->attachToPoint(taut_->rod().endParameter(), btVector3(0, height, static_cast<btScalar>(z)));
   }
 
-  rope_ = std::make_unique<bullet::RopeObject>(Rod::fromPolyline(settings.rod, points, Rod::RestShape::kAsGiven),
-                                               bridge);
-  physics_.ropes().addRope(*rope_);
-
+  // The loads are added to the world before the rope, as a scene file adds its bodies before its ropes
+  // (demos/scenes/capstan.json gives bitwise this scene's trajectory).
+  Rod rod = Rod::fromPolyline(settings.rod, points, Rod::RestShape::kAsGiven);
   const double half = 0.5 * settings.wrapAngle;
   pullDirections_[0] = toBullet(-wrapTangent(-half));
   pullDirections_[1] = toBullet(wrapTangent(half));
   loadForces_[0] = settings.heavyLoad / settings.loadRatio;
   loadForces_[1] = settings.heavyLoad;
   const double sphereRadius = std::min(0.01, 0.4 * settings.wrapRadius());  // the two hanging loads never touch
-  const double ends[2] = {rope_->rod().beginParameter(), rope_->rod().endParameter()};
+  const double ends[2] = {rod.beginParameter(), rod.endParameter()};
   for (int i = 0; i < 2; ++i) {
     btTransform transform;
     transform.setIdentity();
-    transform.setOrigin(toBullet(rope_->rod().position(ends[i])));
+    transform.setOrigin(toBullet(rod.position(ends[i])));
     loads_[i] = physics_.addBody(std::make_unique<btSphereShape>(static_cast<btScalar>(sphereRadius)),
                                  loadForces_[i] / kLoadGravity, transform);
     // Its own gravity along the strand (the ideal pulley), never put to sleep while it holds still.
     loads_[i]->setFlags(loads_[i]->getFlags() | BT_DISABLE_WORLD_GRAVITY);
     loads_[i]->setActivationState(DISABLE_DEACTIVATION);
+    loadGravity_[i] = pullDirections_[i] * static_cast<btScalar>(kLoadGravity);
     startPositions_[i] = transform.getOrigin();
-    rope_->attachToBody(ends[i], *loads_[i], btVector3(0, 0, 0));
   }
+  rope_ = std::make_unique<bullet::RopeObject>(std::move(rod), bridge);
+  physics_.ropes().addRope(*rope_);
+  for (int i = 0; i < 2; ++i) rope_->attachToBody(ends[i], *loads_[i], btVector3(0, 0, 0));
   applyLoads();
 }
 
@@ -179,13 +181,13 @@ CapstanScene::~CapstanScene() = default;
 void CapstanScene::applyLoads() {
   const double ramp = settings_.loadRampTime > 0.0 ? std::min(1.0, time_ / settings_.loadRampTime) : 1.0;
   for (int i = 0; i < 2; ++i) {
-    loads_[i]->setGravity(pullDirections_[i] * static_cast<btScalar>(ramp * kLoadGravity));
+    loads_[i]->setGravity(loadGravity_[i] * static_cast<btScalar>(ramp));
   }
 }
 
 StepMeasurements CapstanScene::step() {
   // The load of the coming step: the ramp's value at its end, so the full load is on from loadRampTime.
-  time_ += settings_.timeStep;
+  time_ = static_cast<double>(++steps_) * settings_.timeStep;  // counted, not summed: no drift
   applyLoads();
   const StepMeasurements counts = stepAndCheck(physics_, settings_.timeStep, "capstan");
   StepMeasurements measurements = measure();

@@ -107,9 +107,11 @@ class CapstanScene : public DemoScene {
   std::unique_ptr<bullet::RopeObject> rope_;
   btRigidBody* loads_[2] = {nullptr, nullptr};  // light (rope begin), heavy (rope end)
   btVector3 pullDirections_[2];                 // unit, away from the support along each strand
+  btVector3 loadGravity_[2];                    // m/s^2: each load's full gravity, along its strand
   btVector3 startPositions_[2];
   double loadForces_[2] = {0.0, 0.0};           // N
   double time_ = 0.0;
+  long steps_ = 0;
 };
 
 }  // namespace rope::demos

@@ -49,15 +49,19 @@ CraneScene::CraneScene(const CraneSceneSettings& settings) : settings_(settings)
 double CraneScene::topHeight(double t) const {
   if (t <= settings_.liftStart) return settings_.topHeight;
   const double u = std::min(1.0, (t - settings_.liftStart) / settings_.liftDuration);
-  return settings_.topHeight + settings_.liftHeight * u * u * (3.0 - 2.0 * u);  // smoothstep
+  const double lifted = settings_.topHeight + settings_.liftHeight;
+  // Smoothstep from the top's start to its end, written as a scene file's keyframes interpolate it
+  // (demos/scenes/crane.json gives bitwise this scene's trajectory).
+  return settings_.topHeight + u * u * (3.0 - 2.0 * u) * (lifted - settings_.topHeight);
 }
 
 StepMeasurements CraneScene::step() {
-  const double next = time_ + settings_.timeStep;
+  const double next = static_cast<double>(steps_ + 1) * settings_.timeStep;  // counted, not summed: no drift
   rope_->setAttachmentTarget(topAttachment_, btVector3(0, static_cast<btScalar>(topHeight(next)), 0));
   const btScalar h = static_cast<btScalar>(settings_.timeStep);
   physics_.world().stepSimulation(h, 1, h);
   time_ = next;
+  ++steps_;
   const bullet::RopeStepRecord& record = rope_->lastStep();
   if (!record.ok) throw std::runtime_error(std::string("crane: rope step failed: ") + record.failure);
   StepMeasurements measurements = measure();

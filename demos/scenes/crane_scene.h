@@ -59,6 +59,7 @@ class CraneScene : public DemoScene {
   int topAttachment_ = 0;
   int boxAttachment_ = 0;
   double time_ = 0.0;
+  long steps_ = 0;
 };
 
 }  // namespace rope::demos

@@ -26,8 +26,8 @@ TEST_P(BuiltInSceneFile, GivesTheBuildersTrajectoryBitForBit) {
   ASSERT_EQ(fromFile.timeStep(), built->timeStep());
   // About one simulated second (half for the pile, 7 ms a step): through the landing and the
   // contacts; the cut to 1.5 s, past the cut at 1 s; the winch to 7.5 s, through lowering, hold and
-  // the start of the lift.
-  const int steps = name == "pile" ? 120 : name == "cut" ? 360 : name == "winch" ? 1800 : 240;
+  // the start of the lift; the crane to 6 s, through its lift along a smoothstep from 3 s to 5 s.
+  const int steps = name == "pile" ? 120 : name == "cut" ? 360 : name == "winch" ? 1800 : name == "crane" ? 1440 : 240;
   std::vector<double> a, b;
   for (int i = 1; i <= steps; ++i) {
     fromFile.step();

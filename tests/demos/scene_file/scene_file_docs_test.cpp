@@ -7,7 +7,6 @@
 
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -34,24 +33,51 @@ struct DocRow {
   std::string defaultValue;  // the default column's text
 };
 
+// "### `object`" (trailing blanks allowed): the object's name, or "" for any other line.
+std::string headingName(const std::string& line) {
+  const std::string prefix = "### `";
+  if (line.compare(0, prefix.size(), prefix) != 0) return "";
+  const std::size_t close = line.find('`', prefix.size());
+  if (close == std::string::npos || line.find_first_not_of(" \t\r", close + 1) != std::string::npos) return "";
+  return line.substr(prefix.size(), close - prefix.size());
+}
+
+std::string trimmed(const std::string& text) {
+  const std::size_t first = text.find_first_not_of(' ');
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(' ') - first + 1);
+}
+
+// "| `key` | unit | default | ...": the key and the default column's text, or false for another line.
+// (Plain string scanning: std::regex trips GCC 12's -Wmaybe-uninitialized in the sanitize build.)
+bool keyRow(const std::string& line, DocRow& row) {
+  const std::string prefix = "| `";
+  if (line.compare(0, prefix.size(), prefix) != 0) return false;
+  const std::size_t close = line.find('`', prefix.size());
+  if (close == std::string::npos || line.compare(close, 3, "` |") != 0) return false;
+  const std::size_t unitEnd = line.find('|', close + 3);
+  if (unitEnd == std::string::npos) return false;
+  const std::size_t defaultEnd = line.find('|', unitEnd + 1);
+  if (defaultEnd == std::string::npos) return false;
+  row.key = line.substr(prefix.size(), close - prefix.size());
+  row.defaultValue = trimmed(line.substr(unitEnd + 1, defaultEnd - unitEnd - 1));
+  return true;
+}
+
 // The key tables of docs/scene-files.md: "### `object`" headings, then rows "| `key` | unit |
 // default | range | meaning |".
 std::map<std::string, std::vector<DocRow>> docTables() {
   std::map<std::string, std::vector<DocRow>> tables;
   std::istringstream text(read(SPLINEROPE_SOURCE_DIR "/docs/scene-files.md"));
-  const std::regex heading(R"(^### `([^`]+)`\s*$)");
-  const std::regex row(R"(^\| `([^`]+)` \|([^|]*)\|([^|]*)\|)");
   std::string object;
   for (std::string line; std::getline(text, line);) {
-    std::smatch match;
-    if (std::regex_match(line, match, heading)) {
-      object = match[1];
+    const std::string name = headingName(line);
+    DocRow row;
+    if (!name.empty()) {
+      object = name;
       tables[object];
-    } else if (!object.empty() && std::regex_search(line, match, row)) {
-      std::string value = match[3];
-      value = value.substr(value.find_first_not_of(' '));
-      value = value.substr(0, value.find_last_not_of(' ') + 1);
-      tables[object].push_back({match[1], value});
+    } else if (!object.empty() && keyRow(line, row)) {
+      tables[object].push_back(row);
     }
   }
   return tables;

@@ -16,16 +16,6 @@ void AttachmentSettings::validate() const {
   requireNonNegative("attachment.angularDamping", angularDamping);
 }
 
-ContactSpring attachmentSpring(const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping, const Vec3& ropePoint,
-                               const Vec3& bodyPoint, const Vec3& ropeVelocity, const Vec3& bodyVelocity, double h) {
-  ContactSpring spring;
-  spring.force = -stiffness * (ropePoint - bodyPoint) - damping * (ropeVelocity - bodyVelocity) +
-                 h * (stiffness * bodyVelocity);
-  spring.stiffness = stiffness;
-  spring.damping = damping;
-  return spring;
-}
-
 void seriesWithBody(ContactSpring& spring, const Eigen::Matrix3d& inverseMass, double h) {
   // A = I + (h^2 K + h C) W; f = A^-1 (f0 - h K du - C du) keeps Rod::addSpring's form with every term
   // premultiplied by A^-1 (K and C are multiples of the identity, so A^-1 K stays symmetric).

@@ -52,9 +52,6 @@ struct Attachment {
 // predicted to move on at v_p (p_new = p + h v_p), in Rod::addSpring's form (see contact_response.h).
 ContactSpring attachmentSpring(double stiffness, double damping, const Vec3& ropePoint, const Vec3& bodyPoint,
                                const Vec3& ropeVelocity, const Vec3& bodyVelocity, double h);
-// The same with 3x3 stiffness (N/m) and damping (N s/m), symmetric positive semidefinite.
-ContactSpring attachmentSpring(const Eigen::Matrix3d& stiffness, const Eigen::Matrix3d& damping, const Vec3& ropePoint,
-                               const Vec3& bodyPoint, const Vec3& ropeVelocity, const Vec3& bodyVelocity, double h);
 
 // The attachment spring to a dynamic body, with the body's response made implicit: the body point's
 // velocity changes by W (-f h) when the rope pulls with f (W = I/m - [r]x I^-1 [r]x, m/(N s^2), the

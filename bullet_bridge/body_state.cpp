@@ -27,4 +27,17 @@ Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point) {
   return toVec(body->getVelocityInLocalPoint(point - body->getCenterOfMassPosition()));
 }
 
+Eigen::Matrix3d pointInverseMass(const btRigidBody& body, const btVector3& arm) {
+  const btMatrix3x3& inverseInertia = body.getInvInertiaTensorWorld();
+  Eigen::Matrix3d inertiaInverse;
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) inertiaInverse(row, col) = static_cast<double>(inverseInertia[row][col]);
+  const Vec3 r = toVec(arm);
+  Eigen::Matrix3d cross;
+  cross << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  const Eigen::Matrix3d w =
+      static_cast<double>(body.getInvMass()) * Eigen::Matrix3d::Identity() - cross * inertiaInverse * cross;
+  return 0.5 * (w + w.transpose());
+}
+
 }  // namespace rope::bullet

@@ -24,4 +24,9 @@ btRigidBody* dynamicBody(const btCollisionObject& object);
 // that is not a rigid body.
 Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point);
 
+// The inverse-mass matrix of a dynamic body's material point at `arm` from its centre of mass (world
+// frame), m/(N s^2): an impulse J there changes the point's velocity by W J, W = I/m - [r]x I^-1 [r]x
+// (symmetric positive semidefinite; symmetrised against the round-off of Bullet's world inertia).
+Eigen::Matrix3d pointInverseMass(const btRigidBody& body, const btVector3& arm);
+
 }  // namespace rope::bullet

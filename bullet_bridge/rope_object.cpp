@@ -266,18 +266,9 @@ void RopeObject::queueAttachments(double h) {
     pending.spring = attachmentSpring(attachment.settings.stiffness, attachment.settings.damping,
                                       rod_.position(attachment.s), toVec(point), pending.velocity, bodyVelocity, h);
     if (dynamicBody(*body) != nullptr) {
-      // The body point's inverse-mass matrix W = I/m - [r]x I^-1 [r]x: the spring acts in series with it.
-      const btMatrix3x3& inverseInertia = body->getInvInertiaTensorWorld();
-      Eigen::Matrix3d inertiaInverse;
-      for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col) inertiaInverse(row, col) = static_cast<double>(inverseInertia[row][col]);
-      Eigen::Matrix3d cross;
-      const Vec3 r = toVec(arm);
-      cross << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
-      const Eigen::Matrix3d inverseMass =
-          static_cast<double>(body->getInvMass()) * Eigen::Matrix3d::Identity() - cross * inertiaInverse * cross;
+      // The spring acts in series with the body point's inertia, shared among the body's attachments.
       const double sharing = static_cast<double>(attachmentsOn(body));
-      seriesWithBody(pending.spring, (0.5 * sharing) * (inverseMass + inverseMass.transpose()), h);
+      seriesWithBody(pending.spring, sharing * pointInverseMass(*body, arm), h);
     }
     pending.body = dynamicBody(*body);
     pending.point = point;

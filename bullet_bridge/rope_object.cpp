@@ -361,8 +361,12 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
   for (RopeContactRecord& record : contacts_) record.rope = this;
   // Contact forces are not smooth in time: a substep with body contact candidates, or after one with
   // rope-rope candidates, is a backward-Euler step (Rod::restartTimeIntegration); free and attached
-  // stretches of motion keep the rod's second-order BDF2.
-  if (!contacts_.empty() || nearRopes) rod_.restartTimeIntegration();
+  // stretches of motion keep the rod's second-order BDF2. Knot removal there is judged by the shape
+  // (RemovalCriterion::kMechanicalOutOfContact): contact jitter is far above the mechanical floors.
+  if (!contacts_.empty() || nearRopes) {
+    rod_.restartTimeIntegration();
+    rod_.markContact();
+  }
 
   queueAttachments(h);
 

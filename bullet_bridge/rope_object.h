@@ -199,6 +199,7 @@ class RopeObject {
     lastStep_.ropeContacts = active;
     lastStep_.maxSelfOverlap = maxOverlap;
     nearRopes_ = near;
+    if (near) rod_.markContact();
   }
   void shareBodyAttachmentCounts(const std::vector<std::pair<const btRigidBody*, int>>* counts) {
     bodyAttachmentCounts_ = counts;

@@ -138,9 +138,11 @@ void readRopeSettings(const JsonFields& fields, RodSettings& rod, bullet::Bullet
   rod.removeAngle = fields.number("removeAngle", rod.removeAngle);
   rod.removalErrorBound = fields.number("removalErrorBound", rod.removalErrorBound);
   rod.removalVelocityErrorBound = fields.number("removalVelocityErrorBound", rod.removalVelocityErrorBound);
-  rod.removalCriterion = fields.choice("removalCriterion", {"polygon", "mechanical"}, "polygon") == "mechanical"
-                             ? RemovalCriterion::kMechanical
-                             : RemovalCriterion::kPolygon;
+  const std::string criterion =
+      fields.choice("removalCriterion", {"polygon", "mechanical", "mechanicalOutOfContact"}, "mechanicalOutOfContact");
+  rod.removalCriterion = criterion == "polygon"      ? RemovalCriterion::kPolygon
+                         : criterion == "mechanical" ? RemovalCriterion::kMechanical
+                                                     : RemovalCriterion::kMechanicalOutOfContact;
   rod.removalRelativeError = fields.number("removalRelativeError", rod.removalRelativeError);
   rod.minKnotSpacing = fields.number("minKnotSpacing", rod.minKnotSpacing);
 

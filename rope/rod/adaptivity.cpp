@@ -126,9 +126,13 @@ RemovalMechanics removalMechanics(const RodIntegrals& integrals, const PointList
       const double after = 0.5 * ((tangent + change).squaredNorm() * inverseMetric2 - 1.0);
       strainError += span.w0[g] * (after - before) * (after - before);
       strainSize += span.w0[g] * before * before;
-      // Geometric stiffness: under tension T = EA e a change of the tangent costs T |dC'|^2 (the
-      // stiffness of a taut string, which has no bending stiffness at all).
-      tensionError += bounds.axialStiffness * std::max(before, 0.0) * span.w1[g] * change.squaredNorm();
+      // Geometric stiffness: under tension T = EA e a change of the tangent's direction costs
+      // T |dC'_perp|^2 (the stiffness of a taut string, which has no bending stiffness at all). Only
+      // the part across the tangent: a change along it re-spaces the parameter on a straight stretch
+      // and is a change of strain (measured above), which the rope relaxes in a few steps.
+      const double tangentNorm2 = tangent.squaredNorm();
+      const Vec3 across = tangentNorm2 > 0.0 ? Vec3(change - (change.dot(tangent) / tangentNorm2) * tangent) : change;
+      tensionError += bounds.axialStiffness * std::max(before, 0.0) * span.w1[g] * across.squaredNorm();
     }
   }
   // Floors (RodSettings::removalRelativeError) in the same squared norms: a field of RMS size f over

@@ -593,6 +593,8 @@ StepReport Rod::commitTrial() {
   for (const Spring& spring : springs_)
     if (spring.interaction) interactions_.push_back(spring.parameter);
   interactions_.insert(interactions_.end(), markedInteractions_.begin(), markedInteractions_.end());
+  contactLastStep_ = contactMarked_;
+  contactMarked_ = false;
   recordInternalImpulse();  // before the swap: it needs the start-of-step forces and the new velocities
   points_.swap(newPoints_);
   velocities_.swap(newVelocities_);

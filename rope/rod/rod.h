@@ -21,8 +21,9 @@
 // momentum changes by exactly the impulse its loads deliver.
 // Then adaptivity ([A] §4): knots at interaction points, insertion where the control polygon bends
 // (included angle < insertAngle), removal where it is straight (> removeAngle), the removal error
-// is within removalErrorBound and (RemovalCriterion::kMechanical, opt-in) the coarser spline
-// carries the velocity field and the internal energy (docs/method.md §10); a removal from a rope that
+// is within removalErrorBound and (by default, after a step without contact or attachment springs)
+// the coarser spline carries the velocity field and the internal energy (RemovalCriterion,
+// docs/method.md §10); a removal from a rope that
 // nothing holds or touches keeps its linear momentum exactly.
 // Counts stay within [minControlPoints, maxControlPoints].
 //
@@ -242,6 +243,9 @@ class Rod {
   void correctTrial(const double* dv);
   // A knot at s after the coming commit, as for a load (adaptivity's interaction criterion).
   void markInteraction(double s);
+  // The coming step is in contact (the bridge: body contact candidates, or rope-rope contact in the
+  // last substep): after it, RemovalCriterion::kMechanicalOutOfContact removes knots by kPolygon.
+  void markContact() { contactMarked_ = true; }
   // Makes the trial the rod's state, runs adaptivity and clears the loads. Throws
   // InvalidArgument("trial", ...) without a trial.
   StepReport commitTrial();
@@ -396,6 +400,8 @@ class Rod {
   std::vector<double> bend_;
   std::vector<int> spans_;
   std::vector<double> interactions_;
+  bool contactMarked_ = false;    // markContact() since the last commit (clearLoads keeps it)
+  bool contactLastStep_ = false;  // the last committed step was in contact (kMechanicalOutOfContact)
   std::vector<double> markedInteractions_;
   bool trialValid_ = false;
   double trialStep_ = 0.0;

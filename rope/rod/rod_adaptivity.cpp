@@ -149,7 +149,8 @@ void Rod::adapt(StepReport& report) {
   // 3. Removal where the polygon is straight and the error small, right to left.
   bendMeasures(points_, bend_);
   const double bound = settings_.removalErrorBound;
-  const bool mechanical = settings_.removalCriterion == RemovalCriterion::kMechanical;
+  const bool mechanical = settings_.removalCriterion == RemovalCriterion::kMechanical ||
+                          (settings_.removalCriterion == RemovalCriterion::kMechanicalOutOfContact && !contactLastStep_);
   MechanicsBounds mechanics;
   mechanics.relative = settings_.removalRelativeError;
   mechanics.axialStiffness = settings_.axialStiffness();

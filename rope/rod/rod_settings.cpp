@@ -104,7 +104,8 @@ void RodSettings::validate() const {
   }
   requirePositive("settings.removalErrorBound", removalErrorBound);
   requirePositive("settings.removalVelocityErrorBound", removalVelocityErrorBound);
-  if (removalCriterion != RemovalCriterion::kPolygon && removalCriterion != RemovalCriterion::kMechanical) {
+  if (removalCriterion != RemovalCriterion::kPolygon && removalCriterion != RemovalCriterion::kMechanical &&
+      removalCriterion != RemovalCriterion::kMechanicalOutOfContact) {
     throw InvalidArgument("settings.removalCriterion", std::to_string(static_cast<int>(removalCriterion)),
                           "is not a RemovalCriterion");
   }

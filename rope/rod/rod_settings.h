@@ -66,11 +66,17 @@ enum class RemovalCriterion {
   // may each change by at most removalRelativeError of their own size there. A straight, still or
   // rigidly moving rope is coarsened as before; a vibrating or loaded one keeps the knots its motion
   // and its internal forces need (measured: modes and cantilevers as at fixed resolution).
-  // Not yet the default: measured as the default, ropes in contact kept the knots inserted at their
-  // contacts (a resting rope 24 control points instead of at most 16), a dropped pile drifted 7.5e-4
-  // (its test allows 5e-4), a rope on a capstan crept at 3.3e-4 m/s (3e-7 allowed) and the knot
-  // scene removed no knot: contact jitter is far above its floors (docs/method.md §10).
+  // Measured as the only test, ropes in contact kept the knots inserted at their contacts (a resting
+  // rope 24 control points instead of at most 16), a dropped pile drifted 7.5e-4 (its test allows
+  // 5e-4), a rope on a capstan crept at 3.3e-4 m/s (3e-7 allowed) and the knot scene removed no
+  // knot: contact jitter is far above its floors (docs/method.md §10).
   kMechanical,
+  // The default: kMechanical, except after a step in contact (Rod::markContact; the Bullet bridge
+  // marks a substep with body contact candidates, or after one with rope-rope contact), which is
+  // judged by kPolygon. A free, pinned, attached or force-loaded rope keeps the knots its modes and
+  // its load need; a rope in contact is coarsened by its shape, as the contact pressure, not the
+  // rope's own modes, sets its motion there.
+  kMechanicalOutOfContact,
 };
 
 struct RodSettings {
@@ -117,7 +123,7 @@ struct RodSettings {
   // a part of the rope whose motion the coarser spline cannot carry (an impact, a whip) changed that
   // motion (and, before removal restored momentum, a moving rope's momentum by 2%).
   double removalVelocityErrorBound = 1.0e-3;
-  RemovalCriterion removalCriterion = RemovalCriterion::kPolygon;
+  RemovalCriterion removalCriterion = RemovalCriterion::kMechanicalOutOfContact;
   // kMechanical's relative bound, dimensionless, in (0, 1). Each measure's L2 error over the changed
   // spans may be this fraction of the measure's size there, plus a floor so that a field that is
   // zero (a still or straight rope) does not block removal by rounding: this fraction of
@@ -126,7 +132,8 @@ struct RodSettings {
   // Why 1e-4: the test sees one instant, and a vibrating rope's state passes it now and then when
   // its modes happen to combine into a smoother field. Measured, first three modes of a taut string
   // and of a rope hanging from one end, from 16 control points (fixed 16: within 0.07 % and 0.42 %):
-  // 1e-4 within 0.13 % and 0.41 %, 3e-4 within 0.48 % and 0.48 %; straight and still, both ropes are
+  // 1e-4 within 0.20 % and 0.43 %, 3e-4 within 0.48 % and 0.48 % (before the geometric stiffness
+  // counted only the tangent's turn); straight and still, both ropes are
   // coarsened to 4 control points either way.
   double removalRelativeError = 1.0e-4;
   // No knot span is split below twice this rest length, and no interaction knot is placed closer

@@ -96,7 +96,8 @@ TEST(UserGuide, RodSettings) {
        field("removalVelocityErrorBound", &S::removalVelocityErrorBound),
        enumField("removalCriterion", &S::removalCriterion,
                  {{RemovalCriterion::kPolygon, "RemovalCriterion::kPolygon"},
-                  {RemovalCriterion::kMechanical, "RemovalCriterion::kMechanical"}}),
+                  {RemovalCriterion::kMechanical, "RemovalCriterion::kMechanical"},
+                  {RemovalCriterion::kMechanicalOutOfContact, "RemovalCriterion::kMechanicalOutOfContact"}}),
        field("removalRelativeError", &S::removalRelativeError),
        field("minKnotSpacing", &S::minKnotSpacing)},
       [](const S& settings) { settings.validate(); }});

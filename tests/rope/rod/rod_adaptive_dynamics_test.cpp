@@ -2,8 +2,9 @@
 // Adaptivity that keeps the dynamics (docs/method.md §10), all with adaptivity on:
 //   - knot removal keeps a free rope's linear momentum (with either removal criterion);
 //   - the first three transverse modes of a taut string and of a rope hanging from one end keep their
-//     analytic frequencies with RemovalCriterion::kMechanical, while the same ropes straight and
-//     still are coarsened below the uniform count they started with.
+//     analytic frequencies with the default removal criterion (kMechanicalOutOfContact, which is
+//     kMechanical for a rope out of contact), while the same ropes straight and still are coarsened
+//     below the uniform count they started with.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -110,8 +111,7 @@ Drift flingAndCoarsen(const RodSettings& settings, unsigned seed) {
 
 TEST(AdaptiveDynamics, KnotRemovalKeepsTheLinearMomentumOfAFlungRope) {
   RodSettings settings;  // default: adaptive
-  settings.gravity = Vec3::Zero();
-  settings.removalCriterion = RemovalCriterion::kMechanical;
+  settings.gravity = Vec3::Zero();  // the default removal criterion: kMechanical out of contact
   const Drift mechanical = flingAndCoarsen(settings, 7u);
   // The polygon criterion removes far more knots adaptively from the same motion; the projection
   // must keep momentum through those too.
@@ -240,7 +240,6 @@ RodSettings stringSettings() {
   settings.youngsModulus = 1000.0 / settings.area();
   settings.bendingStiffness = 0.0;
   settings.gravity = Vec3::Zero();
-  settings.removalCriterion = RemovalCriterion::kMechanical;
   return settings;  // default adaptivity otherwise: on, 16 initial control points
 }
 
@@ -262,7 +261,8 @@ TEST(AdaptiveDynamics, TautStringKeepsItsFirstThreeModesAndCoarsensWhenStill) {
     const double error = run.frequency / exact - 1.0;
     std::printf("[adaptive taut string] mode %d: f %.5f Hz (exact %.5f), error %+.2e, control points %d..%d\n", k,
                 run.frequency, exact, error, run.minPoints, run.maxPoints);
-    EXPECT_LT(std::abs(error), 1e-2) << "mode " << k;
+    // Issue target 1 %; measured with the default criterion within 2.0e-3 (fixed 16: 0.07 %).
+    EXPECT_LT(std::abs(error), 5e-3) << "mode " << k;
   }
   // The same string straight and still: coarsened below the 16 points it started with.
   Rod still = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(kSpan, 0, 0));
@@ -283,8 +283,7 @@ RodSettings hangingSettings() {
   settings.linearDensity = 0.1;
   settings.youngsModulus = 1e5 / settings.area();
   settings.bendingStiffness = 0.0;
-  settings.removalCriterion = RemovalCriterion::kMechanical;
-  return settings;
+  return settings;  // default adaptivity
 }
 
 TEST(AdaptiveDynamics, HangingRopeKeepsItsFirstThreeBesselModesAndCoarsensWhenStill) {
@@ -306,7 +305,8 @@ TEST(AdaptiveDynamics, HangingRopeKeepsItsFirstThreeBesselModesAndCoarsensWhenSt
     const double error = run.frequency / exact - 1.0;
     std::printf("[adaptive hanging rope] mode %d: f %.5f Hz (exact %.5f), error %+.2e, control points %d..%d\n", k,
                 run.frequency, exact, error, run.minPoints, run.maxPoints);
-    EXPECT_LT(std::abs(error), 1e-2) << "mode " << k;
+    // Issue target 1 %; measured with the default criterion within 4.3e-3 (fixed 16: 0.42 %).
+    EXPECT_LT(std::abs(error), 8e-3) << "mode " << k;
   }
   // Hanging straight and still: coarsened below the uniform count.
   Rod still = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(0, -length, 0));

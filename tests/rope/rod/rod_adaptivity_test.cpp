@@ -52,8 +52,12 @@ TEST(Adaptivity, LocalRemovalErrorIsZeroForARedundantKnot) {
 
 // A rope draped over a peg (pinned at its middle) folds tightly there: it must gain control points
 // only near the fold; once it hangs straight from one end it loses them again.
+// [A]/[B]'s criterion: RemovalCriterion::kMechanicalOutOfContact (the default) keeps about three
+// times as many on the pulled, sagging rope, which is loaded (tension and its own weight), not
+// straight and still.
 TEST(Adaptivity, TightFoldGainsPointsOnlyNearTheFoldAndLosesThemWhenStraight) {
   RodSettings settings;
+  settings.removalCriterion = RemovalCriterion::kPolygon;
   settings.restLength = 1.0;
   settings.linearDensity = 0.05;
   settings.youngsModulus = 1e8;
@@ -157,6 +161,7 @@ TEST(Adaptivity, RemovalWaitsForAVelocityFieldTheCoarserSplineCanCarry) {
   settings.minControlPoints = 4;
   Rod rod = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(1, 0, 0));
   const int count = rod.controlPointCount();
+  const PointList straight = rod.controlPoints();
   PointList wavy(static_cast<size_t>(count));
   for (int i = 0; i < count; ++i) wavy[static_cast<size_t>(i)] = Vec3(0, 0, (i % 2 == 0 ? 0.5 : -0.5));
   rod.setVelocities(wavy);
@@ -165,6 +170,9 @@ TEST(Adaptivity, RemovalWaitsForAVelocityFieldTheCoarserSplineCanCarry) {
   EXPECT_EQ(blocked.removals, 0);
   EXPECT_EQ(rod.controlPointCount(), count);
 
+  // The wavy step left a 5e-7 m zigzag in the shape, which RemovalCriterion::kMechanical rightly
+  // keeps (it is not representable on fewer knots); this test is about the velocity field.
+  rod.setControlPoints(straight);
   rod.setVelocities(PointList(static_cast<size_t>(count), Vec3(0, 0, 0.5)));
   const Vec3 momentum = rod.momentum();
   const StepReport allowed = rod.step(1e-6);

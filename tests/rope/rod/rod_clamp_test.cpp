@@ -45,9 +45,10 @@ TEST(ElasticaReference, MatchesBisshoppAndDrucker) {
 // A 1 m nylon rope of 5 mm radius (EI = 0.49 N m^2, EA = 78.5 kN: inextensible for these loads),
 // straight along +x, clamped at s = 0 along +x. Mass damping lets it settle; gravity only where a
 // test sets it.
-RodSettings cantileverSettings(int controlPoints, bool adaptive, bool mechanical = false) {
+RodSettings cantileverSettings(int controlPoints, bool adaptive,
+                               RemovalCriterion criterion = RodSettings().removalCriterion) {
   RodSettings settings;
-  if (mechanical) settings.removalCriterion = RemovalCriterion::kMechanical;
+  settings.removalCriterion = criterion;
   settings.restLength = 1.0;
   settings.initialControlPoints = controlPoints;
   settings.adaptive = adaptive;
@@ -90,8 +91,8 @@ Settled settle(Rod& rod, double tipLoad, double h, double still) {
 
 // A cantilever under a tip load alpha EI / L^2 and a weight beta EI / L^3 per length (both down).
 Settled cantilever(int controlPoints, bool adaptive, double alpha, double beta, double h, double still,
-                   bool mechanical = false) {
-  RodSettings settings = cantileverSettings(controlPoints, adaptive, mechanical);
+                   RemovalCriterion criterion = RodSettings().removalCriterion) {
+  RodSettings settings = cantileverSettings(controlPoints, adaptive, criterion);
   const double ei = settings.effectiveBendingStiffness();
   settings.gravity = Vec3(0.0, -beta * ei / settings.effectiveLinearDensity(), 0.0);
   Rod rod = Rod::fromSegment(settings, Vec3::Zero(), Vec3(1, 0, 0));
@@ -126,40 +127,40 @@ const LargeCase kLargeCases[] = {{1, 0}, {2, 0}, {5, 0}, {10, 0}, {0, 1}, {0, 5}
 
 TEST(RodClamp, LargeDeflectionCantileversMatchTheElastica) {
   // Tip loads P L^2 / EI = 1, 2, 5, 10 (Bisshopp & Drucker) and self weight w L^3 / EI = 1, 5, 10, at
-  // 16 fixed control points (measured: within 4.2e-5 L), with the default adaptivity from 16 (issue
-  // target 0.5 % of L; measured: within 1.03e-3 L, 6-10 control points kept) and with
-  // RemovalCriterion::kMechanical, which keeps the knots the bent, loaded rope's bending energy needs
-  // (measured: all 16 kept, within 4.2e-5 L like the fixed rope). The clamp's tangent and point hold
-  // to rounding at every step in all three.
-  double worstFixed = 0.0, worstAdaptive = 0.0, worstMechanical = 0.0, worstTangent = 0.0;
+  // 16 fixed control points (measured: within 4.2e-5 L), with the default adaptivity from 16, whose
+  // removal criterion keeps the knots the bent, loaded rope's bending energy needs (measured: all 16
+  // kept, within 4.2e-5 L like the fixed rope), and with [A]/[B]'s RemovalCriterion::kPolygon
+  // (issue target 0.5 % of L; measured: within 1.03e-3 L, 6-10 control points kept). The clamp's
+  // tangent and point hold to rounding at every step in all three.
+  double worstFixed = 0.0, worstAdaptive = 0.0, worstPolygon = 0.0, worstTangent = 0.0;
   for (const LargeCase& c : kLargeCases) {
     const ElasticaTip reference = elastica(1.0, 1.0, c.alpha, c.beta);
     const Vec3 expected(reference.x, reference.y, 0.0);
     const Settled fixed = cantilever(16, false, c.alpha, c.beta, 1.0 / 240, 1e-11);
     const Settled adaptive = cantilever(16, true, c.alpha, c.beta, 1.0 / 240, 1e-11);
-    const Settled mechanical = cantilever(16, true, c.alpha, c.beta, 1.0 / 240, 1e-11, true);
-    ASSERT_TRUE(fixed.ok && adaptive.ok && mechanical.ok) << c.alpha << " " << c.beta;
+    const Settled polygon = cantilever(16, true, c.alpha, c.beta, 1.0 / 240, 1e-11, RemovalCriterion::kPolygon);
+    ASSERT_TRUE(fixed.ok && adaptive.ok && polygon.ok) << c.alpha << " " << c.beta;
     EXPECT_LT((fixed.tip - expected).norm(), 1e-4) << c.alpha << " " << c.beta;
-    // Measured worst over the cases: 4.19e-5 L with 16 fixed control points, 1.03e-3 L adaptive.
-    EXPECT_LT((adaptive.tip - expected).norm(), 2.5e-3) << c.alpha << " " << c.beta;
-    EXPECT_LT(adaptive.controlPoints, 16);
-    EXPECT_LT((mechanical.tip - expected).norm(), 1e-4) << c.alpha << " " << c.beta;
+    EXPECT_LT((adaptive.tip - expected).norm(), 1e-4) << c.alpha << " " << c.beta;
+    // Measured worst over the cases: 1.03e-3 L with kPolygon.
+    EXPECT_LT((polygon.tip - expected).norm(), 2.5e-3) << c.alpha << " " << c.beta;
+    EXPECT_LT(polygon.controlPoints, 16);
     worstFixed = std::max(worstFixed, (fixed.tip - expected).norm());
     worstAdaptive = std::max(worstAdaptive, (adaptive.tip - expected).norm());
-    worstMechanical = std::max(worstMechanical, (mechanical.tip - expected).norm());
-    worstTangent = std::max({worstTangent, fixed.worstTangent, adaptive.worstTangent, mechanical.worstTangent});
+    worstPolygon = std::max(worstPolygon, (polygon.tip - expected).norm());
+    worstTangent = std::max({worstTangent, fixed.worstTangent, adaptive.worstTangent, polygon.worstTangent});
     EXPECT_LT(fixed.worstPosition, 1e-12);
     EXPECT_LT(adaptive.worstPosition, 1e-12);
-    EXPECT_LT(mechanical.worstPosition, 1e-12);
+    EXPECT_LT(polygon.worstPosition, 1e-12);
     std::printf("[cantilever P L^2/EI = %g, w L^3/EI = %g] tip error / L: fixed 16 %.2e, default %.2e (%d points), "
-                "kMechanical %.2e (%d points)\n", c.alpha, c.beta, (fixed.tip - expected).norm(),
-                (adaptive.tip - expected).norm(), adaptive.controlPoints, (mechanical.tip - expected).norm(),
-                mechanical.controlPoints);
+                "kPolygon %.2e (%d points)\n", c.alpha, c.beta, (fixed.tip - expected).norm(),
+                (adaptive.tip - expected).norm(), adaptive.controlPoints, (polygon.tip - expected).norm(),
+                polygon.controlPoints);
   }
-  RecordProperty("worst_tip_error_mechanical_adaptive_over_L", formatValue(worstMechanical));
   EXPECT_LT(worstTangent, 2e-15);  // measured 6.8e-16 (the README's 1e-15)
   RecordProperty("worst_tip_error_fixed_16_over_L", formatValue(worstFixed));
   RecordProperty("worst_tip_error_adaptive_over_L", formatValue(worstAdaptive));
+  RecordProperty("worst_tip_error_polygon_over_L", formatValue(worstPolygon));
   RecordProperty("worst_clamp_tangent_error", formatValue(worstTangent));
 }
 

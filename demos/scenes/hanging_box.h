@@ -19,10 +19,11 @@ struct HangingBox {
   int boxAttachment = 0;  // the bottom's (RopeObject::attachToBody)
 };
 
+// The scenes fill it from their own settings (the defaults are the crane's box and rope length).
 struct HangingBoxSettings {
-  double ropeLength = 1.0;     // m: the rope's rest length (the distance from top to bottom)
-  double boxMass = 1.0;        // kg
-  double boxHalfExtent = 0.1;  // m (a cube)
+  double ropeLength = 1.0;     // m, > 0: the rope's rest length (the distance from top to bottom)
+  double boxMass = 10.0;       // kg, > 0
+  double boxHalfExtent = 0.1;  // m, > 0 (a cube)
   RodSettings rod;             // restLength is set to ropeLength
   bullet::BulletRopeSettings bridge;
   bullet::AttachmentSettings attachment;

@@ -16,11 +16,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-btVector3 toBullet(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
-}
-
-btQuaternion toBullet(const Eigen::Vector4d& q) {
+btQuaternion toBulletRotation(const Eigen::Vector4d& q) {
   return btQuaternion(static_cast<btScalar>(q[0]), static_cast<btScalar>(q[1]), static_cast<btScalar>(q[2]),
                       static_cast<btScalar>(q[3]));
 }
@@ -153,7 +149,7 @@ btTransform keyframePose(const std::vector<Keyframe>& keyframes, double t) {
   if (next == 0 || next == keyframes.size()) {
     const Keyframe& held = keyframes[next == 0 ? 0 : keyframes.size() - 1];
     pose.setOrigin(toBullet(held.position));
-    pose.setRotation(toBullet(held.rotation));
+    pose.setRotation(toBulletRotation(held.rotation));
     return pose;
   }
   const Keyframe& a = keyframes[next - 1];
@@ -161,7 +157,7 @@ btTransform keyframePose(const std::vector<Keyframe>& keyframes, double t) {
   double u = (t - a.time) / (b.time - a.time);
   if (a.interpolation == Keyframe::Interpolation::kSmoothstep) u = u * u * (3.0 - 2.0 * u);  // smoothstep
   pose.setOrigin(toBullet(Vec3(a.position + u * (b.position - a.position))));
-  pose.setRotation(toBullet(a.rotation).slerp(toBullet(b.rotation), static_cast<btScalar>(u)));
+  pose.setRotation(toBulletRotation(a.rotation).slerp(toBulletRotation(b.rotation), static_cast<btScalar>(u)));
   return pose;
 }
 
@@ -223,7 +219,7 @@ void FileScene::buildBody(const BodyDescription& body) {
     transform = keyframePose(body.keyframes, 0.0);
   } else if (body.shape != BodyDescription::Shape::kPlane) {
     transform.setOrigin(toBullet(body.position));
-    transform.setRotation(toBullet(body.rotation));
+    transform.setRotation(toBulletRotation(body.rotation));
   }
   const double mass = body.motion == BodyDescription::Motion::kDynamic ? body.mass : 0.0;
   btRigidBody* added = nullptr;

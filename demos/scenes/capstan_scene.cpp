@@ -3,11 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 #include "rope/common/error.h"
-#include "demos/scenes/scene_state.h"
 
 namespace rope::demos {
 
@@ -60,10 +57,6 @@ Vec3 wrapPoint(const Settings& settings, double phi) {
 // Unit tangent of the wrap's circle in the x-y plane, in the direction of increasing phi.
 Vec3 wrapTangent(double phi) { return Vec3(std::cos(phi), -std::sin(phi), 0.0); }
 
-btVector3 toBullet(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
-}
-
 }  // namespace
 
 RodSettings CapstanSceneSettings::defaultRod() {
@@ -115,7 +108,7 @@ PointList capstanPolyline(const CapstanSceneSettings& settings) {
   return points;
 }
 
-CapstanScene::CapstanScene(const CapstanSceneSettings& settings) : settings_(settings) {
+CapstanScene::CapstanScene(const CapstanSceneSettings& settings) : WorldScene("capstan", settings.timeStep), settings_(settings) {
   const PointList points = capstanPolyline(settings);  // validates
   bullet::BulletRopeSettings bridge = settings.bridge;
   bridge.friction = settings.friction;
@@ -173,13 +166,13 @@ CapstanScene::CapstanScene(const CapstanSceneSettings& settings) : settings_(set
   rope_ = std::make_unique<bullet::RopeObject>(std::move(rod), bridge);
   physics_.ropes().addRope(*rope_);
   for (int i = 0; i < 2; ++i) rope_->attachToBody(ends[i], *loads_[i], btVector3(0, 0, 0));
-  applyLoads();
+  applyLoads(0.0);
 }
 
 CapstanScene::~CapstanScene() = default;
 
-void CapstanScene::applyLoads() {
-  const double ramp = settings_.loadRampTime > 0.0 ? std::min(1.0, time_ / settings_.loadRampTime) : 1.0;
+void CapstanScene::applyLoads(double t) {
+  const double ramp = settings_.loadRampTime > 0.0 ? std::min(1.0, t / settings_.loadRampTime) : 1.0;
   for (int i = 0; i < 2; ++i) {
     loads_[i]->setGravity(loadGravity_[i] * static_cast<btScalar>(ramp));
   }
@@ -187,13 +180,9 @@ void CapstanScene::applyLoads() {
 
 StepMeasurements CapstanScene::step() {
   // The load of the coming step: the ramp's value at its end, so the full load is on from loadRampTime.
-  time_ = static_cast<double>(++steps_) * settings_.timeStep;  // counted, not summed: no drift
-  applyLoads();
-  const StepMeasurements counts = stepAndCheck(physics_, settings_.timeStep, "capstan");
-  StepMeasurements measurements = measure();
-  measurements.insertions = counts.insertions;
-  measurements.removals = counts.removals;
-  return measurements;
+  const double next = static_cast<double>(++steps_) * settings_.timeStep;  // counted, not summed: no drift
+  applyLoads(next);
+  return advance(next);
 }
 
 double CapstanScene::heavyTravel() const {
@@ -228,7 +217,5 @@ std::optional<render::Camera> CapstanScene::camera() const {
   camera.eye = camera.target + Vec3(0.25, 0.15, 0.9);
   return camera;
 }
-
-void CapstanScene::appendState(std::vector<double>& state) const { appendWorldState(physics_, state); }
 
 }  // namespace rope::demos

@@ -33,8 +33,7 @@
 #include <memory>
 
 #include "bullet_bridge/rope_object.h"
-#include "demos/scenes/demo_scene.h"
-#include "demos/scenes/physics_world.h"
+#include "demos/scenes/world_scene.h"
 
 namespace rope::demos {
 
@@ -73,24 +72,20 @@ struct CapstanSceneSettings {
 // (a point every 5 degrees), strand. Throws InvalidArgument naming the field for bad settings.
 PointList capstanPolyline(const CapstanSceneSettings& settings);
 
-class CapstanScene : public DemoScene {
+class CapstanScene : public WorldScene {
  public:
   // Throws InvalidArgument naming the field for bad settings.
   explicit CapstanScene(const CapstanSceneSettings& settings);
   ~CapstanScene() override;
 
-  double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
-  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const CapstanSceneSettings& settings() const { return settings_; }
   const bullet::RopeObject& rope() const { return *rope_; }
   const bullet::RopeObject* tautRope() const { return taut_.get(); }
-  PhysicsWorld& physics() { return physics_; }
-  double time() const { return time_; }
   // Distance the heavy load has moved along its pull direction since the start, m (> 0: the rope
   // slides towards the heavy side), and its speed along that direction, m/s.
   double heavyTravel() const;
@@ -99,10 +94,9 @@ class CapstanScene : public DemoScene {
   double lightTravel() const;
 
  private:
-  void applyLoads();
+  void applyLoads(double t);  // the loads' ramp at time t, s
 
   CapstanSceneSettings settings_;
-  PhysicsWorld physics_;
   std::unique_ptr<bullet::RopeObject> taut_;
   std::unique_ptr<bullet::RopeObject> rope_;
   btRigidBody* loads_[2] = {nullptr, nullptr};  // light (rope begin), heavy (rope end)
@@ -110,7 +104,6 @@ class CapstanScene : public DemoScene {
   btVector3 loadGravity_[2];                    // m/s^2: each load's full gravity, along its strand
   btVector3 startPositions_[2];
   double loadForces_[2] = {0.0, 0.0};           // N
-  double time_ = 0.0;
   long steps_ = 0;
 };
 

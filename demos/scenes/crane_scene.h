@@ -8,8 +8,8 @@
 #include <memory>
 
 #include "bullet_bridge/rope_object.h"
-#include "demos/scenes/demo_scene.h"
-#include "demos/scenes/physics_world.h"
+#include "demos/scenes/hanging_box.h"
+#include "demos/scenes/world_scene.h"
 
 namespace rope::demos {
 
@@ -30,20 +30,17 @@ struct CraneSceneSettings {
   static RodSettings defaultRod();
 };
 
-class CraneScene : public DemoScene {
+class CraneScene : public WorldScene {
  public:
   explicit CraneScene(const CraneSceneSettings& settings);
 
-  double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
-  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
-  const bullet::RopeObject& rope() const { return *rope_; }
-  const btRigidBody& box() const { return *box_; }
-  double time() const { return time_; }
+  const bullet::RopeObject& rope() const { return *rig_.rope; }
+  const btRigidBody& box() const { return *rig_.box; }
   // Height of the top pin at time t, m.
   double topHeight(double t) const;
   // Distance between the rope's end and the box's attachment point, m.
@@ -53,12 +50,7 @@ class CraneScene : public DemoScene {
 
  private:
   CraneSceneSettings settings_;
-  PhysicsWorld physics_;
-  btRigidBody* box_ = nullptr;
-  std::unique_ptr<bullet::RopeObject> rope_;
-  int topAttachment_ = 0;
-  int boxAttachment_ = 0;
-  double time_ = 0.0;
+  HangingBox rig_;
   long steps_ = 0;
 };
 

@@ -8,8 +8,8 @@
 #include <memory>
 
 #include "bullet_bridge/rope_object.h"
-#include "demos/scenes/demo_scene.h"
-#include "demos/scenes/physics_world.h"
+#include "demos/scenes/hanging_box.h"
+#include "demos/scenes/world_scene.h"
 
 namespace rope::demos {
 
@@ -29,35 +29,28 @@ struct CutSceneSettings {
   static RodSettings defaultRod();  // the crane's rope: 0.01 kg/m, radius 4 mm, EA = 25 kN
 };
 
-class CutScene : public DemoScene {
+class CutScene : public WorldScene {
  public:
   explicit CutScene(const CutSceneSettings& settings);
 
-  double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
-  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
-  const bullet::RopeObject& upper() const { return *upper_; }
+  const bullet::RopeObject& upper() const { return *rig_.rope; }
   // The lower piece after the cut, nullptr before.
   const bullet::RopeObject* lower() const { return lower_.get(); }
-  const btRigidBody& box() const { return *box_; }
-  PhysicsWorld& physics() { return physics_; }
-  double time() const { return time_; }
+  const btRigidBody& box() const { return *rig_.box; }
   bool isCut() const { return lower_ != nullptr; }
   // Distance of the upper piece's top from its pin, m.
   double pinGap() const;
 
  private:
   CutSceneSettings settings_;
-  PhysicsWorld physics_;
-  btRigidBody* box_ = nullptr;
-  std::unique_ptr<bullet::RopeObject> upper_;  // the whole rope before the cut
+  HangingBox rig_;  // its rope is the whole rope before the cut, the upper piece after
   std::unique_ptr<bullet::RopeObject> lower_;
   btVector3 pin_{0, 0, 0};
-  double time_ = 0.0;
 };
 
 }  // namespace rope::demos

@@ -2,10 +2,7 @@
 #include "demos/scenes/drape_scene.h"
 
 #include <algorithm>
-#include <stdexcept>
-#include <string>
 
-#include "demos/scenes/scene_state.h"
 #include "rope/common/error.h"
 
 namespace rope::demos {
@@ -43,7 +40,7 @@ double sampleHeight(const Rod& rod, bool lowest) {
 
 }  // namespace
 
-DrapeScene::DrapeScene(const DrapeSceneSettings& settings) : settings_(settings) {
+DrapeScene::DrapeScene(const DrapeSceneSettings& settings) : WorldScene("drape", settings.timeStep), settings_(settings) {
   requirePositive("settings.ropeLength", settings.ropeLength);
   requireNonNegative("settings.dropHeight", settings.dropHeight);
   requirePositive("settings.obstacleTop", settings.obstacleTop);
@@ -68,17 +65,7 @@ DrapeScene::DrapeScene(const DrapeSceneSettings& settings) : settings_(settings)
   physics_.ropes().addRope(*rope_);
 }
 
-StepMeasurements DrapeScene::step() {
-  const btScalar h = static_cast<btScalar>(settings_.timeStep);
-  physics_.world().stepSimulation(h, 1, h);
-  time_ += settings_.timeStep;
-  const bullet::RopeStepRecord& record = rope_->lastStep();
-  if (!record.ok) throw std::runtime_error(std::string("drape: rope step failed: ") + record.failure);
-  StepMeasurements measurements = measure();
-  measurements.insertions = record.insertions;
-  measurements.removals = record.removals;
-  return measurements;
-}
+StepMeasurements DrapeScene::step() { return advance(); }
 
 StepMeasurements DrapeScene::measure() const {
   StepMeasurements measurements = ropeMeasurements(physics_, *rope_);
@@ -99,10 +86,6 @@ std::optional<render::Camera> DrapeScene::camera() const {
   camera.target = Vec3(0.0, settings_.obstacleTop - 0.1, 0.0);
   camera.eye = camera.target + Vec3(0.5, 0.45, 1.6);
   return camera;
-}
-
-void DrapeScene::appendState(std::vector<double>& state) const {
-  appendWorldState(physics_, state);
 }
 
 }  // namespace rope::demos

@@ -7,8 +7,7 @@
 #include <memory>
 
 #include "bullet_bridge/rope_object.h"
-#include "demos/scenes/demo_scene.h"
-#include "demos/scenes/physics_world.h"
+#include "demos/scenes/world_scene.h"
 
 namespace rope::demos {
 
@@ -27,32 +26,26 @@ struct DrapeSceneSettings {
   static DrapeSceneSettings thinBar();  // the bar at 1 m, the rope dropped from 1 m above it
 };
 
-class DrapeScene : public DemoScene {
+class DrapeScene : public WorldScene {
  public:
   // Throws InvalidArgument naming the field for bad settings.
   explicit DrapeScene(const DrapeSceneSettings& settings);
 
-  double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
-  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const bullet::RopeObject& rope() const { return *rope_; }
   const btRigidBody& obstacle() const { return *obstacle_; }
-  PhysicsWorld& physics() { return physics_; }
-  double time() const { return time_; }
   // Lowest and highest rope point over a dense sample of the curve, m.
   double lowestPoint() const;
   double highestPoint() const;
 
  private:
   DrapeSceneSettings settings_;
-  PhysicsWorld physics_;
   btRigidBody* obstacle_ = nullptr;
   std::unique_ptr<bullet::RopeObject> rope_;
-  double time_ = 0.0;
 };
 
 }  // namespace rope::demos

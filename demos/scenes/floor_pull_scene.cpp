@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "rope/common/error.h"
-#include "demos/scenes/scene_state.h"
 
 namespace rope::demos {
 
@@ -30,7 +29,8 @@ void validate(const FloorPullSceneSettings& settings) {
 }  // namespace
 
 FloorPullScene::FloorPullScene(const FloorPullSceneSettings& settings)
-    : settings_(settings), physics_(btVector3(0, static_cast<btScalar>(-settings.gravity), 0)) {
+    : WorldScene("floorpull", settings.timeStep, btVector3(0, static_cast<btScalar>(-settings.gravity), 0)),
+      settings_(settings) {
   validate(settings);
   // The floor: a 6 m x 2 m box whose top face is y = 0 (the rope slides about 0.5 m in the first second
   // at the default pull).
@@ -67,18 +67,13 @@ StepMeasurements FloorPullScene::step() {
   const double forcePerLength = rod.mass() / rod.restLength() * settings_.pullAcceleration;
   rope_->applyDistributedForce(rod.beginParameter(), rod.endParameter(),
                                btVector3(static_cast<btScalar>(forcePerLength), 0, 0));
-  const StepMeasurements counts = stepAndCheck(physics_, settings_.timeStep, "floorpull");
-  time_ += settings_.timeStep;
-  StepMeasurements measurements = measure();
-  measurements.insertions = counts.insertions;
-  measurements.removals = counts.removals;
-  return measurements;
+  return advance();
 }
 
 StepMeasurements FloorPullScene::measure() const {
   StepMeasurements measurements = ropeMeasurements(physics_, *rope_);
   measurements.series = {{"speed_m_s", speed()},
-                         {"coulomb_speed_m_s", settings_.coulombAcceleration() * time_},
+                         {"coulomb_speed_m_s", settings_.coulombAcceleration() * time()},
                          {"contacts", static_cast<double>(rope_->lastStep().contacts)}};
   return measurements;
 }
@@ -94,7 +89,5 @@ std::optional<render::Camera> FloorPullScene::camera() const {
   camera.eye = camera.target + Vec3(0.0, 0.5, 1.2);
   return camera;
 }
-
-void FloorPullScene::appendState(std::vector<double>& state) const { appendWorldState(physics_, state); }
 
 }  // namespace rope::demos

@@ -13,8 +13,7 @@
 #include <memory>
 
 #include "bullet_bridge/rope_object.h"
-#include "demos/scenes/demo_scene.h"
-#include "demos/scenes/physics_world.h"
+#include "demos/scenes/world_scene.h"
 
 namespace rope::demos {
 
@@ -31,21 +30,17 @@ struct FloorPullSceneSettings {
   double coulombAcceleration() const;
 };
 
-class FloorPullScene : public DemoScene {
+class FloorPullScene : public WorldScene {
  public:
   // Throws InvalidArgument naming the field for bad settings.
   explicit FloorPullScene(const FloorPullSceneSettings& settings);
 
-  double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
-  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const bullet::RopeObject& rope() const { return *rope_; }
-  PhysicsWorld& physics() { return physics_; }
-  double time() const { return time_; }
   // Velocity of the rope's centre of mass along x (momentum / mass), m/s.
   double speed() const;
   // Position of the rope's centre of mass along x (mass-weighted mean of the curve), m.
@@ -53,9 +48,7 @@ class FloorPullScene : public DemoScene {
 
  private:
   FloorPullSceneSettings settings_;
-  PhysicsWorld physics_;
   std::unique_ptr<bullet::RopeObject> rope_;
-  double time_ = 0.0;
 };
 
 }  // namespace rope::demos

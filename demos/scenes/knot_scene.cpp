@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "demos/scenes/scene_state.h"
 #include "render/primitive_mesh.h"
 #include "rope/common/error.h"
 #include "rope/spline/arc_length.h"
@@ -13,7 +12,6 @@ namespace rope::demos {
 
 // Coulomb coefficient of every contact of the knot scene (rope-rope and rope-body).
 constexpr double kKnotFriction = 0.3;
-
 
 namespace {
 
@@ -41,10 +39,6 @@ void validate(const KnotSceneSettings& settings) {
   requirePositive("settings.timeStep", settings.timeStep);
   settings.rod.validate();
   settings.bridge.validate();
-}
-
-btVector3 toBullet(const Vec3& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
 }
 
 }  // namespace
@@ -121,7 +115,7 @@ KnotRegion knotRegion(const bullet::RopeObject& rope, const bullet::ContactRepor
   return region;
 }
 
-KnotScene::KnotScene(const KnotSceneSettings& settings) : settings_(settings) {
+KnotScene::KnotScene(const KnotSceneSettings& settings) : WorldScene("knot", settings.timeStep), settings_(settings) {
   const PointList points = overhandKnotPolyline(settings);  // validates
   physics_.addGround(0.0)->setFriction(static_cast<btScalar>(std::sqrt(kKnotFriction)));
   RodSettings rod = settings.rod;
@@ -153,7 +147,7 @@ double KnotScene::endStrain() const {
 double KnotScene::endSeparation() const { return static_cast<double>((pinPoints_[1] - pinPoints_[0]).length()); }
 
 void KnotScene::moveGrippers(double h) {
-  if (settings_.tightening != KnotSceneSettings::Tightening::kPull || time_ < settings_.settleTime) return;
+  if (settings_.tightening != KnotSceneSettings::Tightening::kPull || time() < settings_.settleTime) return;
   const Rod& rod = rope_->rod();
   const double targetStrain = settings_.pullTension / rod.settings().axialStiffness();
   const double s[2] = {rod.beginParameter() + 0.02, rod.endParameter() - 0.02};
@@ -172,12 +166,7 @@ void KnotScene::moveGrippers(double h) {
 
 StepMeasurements KnotScene::step() {
   moveGrippers(settings_.timeStep);
-  const StepMeasurements counts = stepAndCheck(physics_, settings_.timeStep, "knot");
-  time_ += settings_.timeStep;
-  StepMeasurements measurements = measure();
-  measurements.insertions = counts.insertions;
-  measurements.removals = counts.removals;
-  return measurements;
+  return advance();
 }
 
 StepMeasurements KnotScene::measure() const {
@@ -206,10 +195,6 @@ std::optional<render::Camera> KnotScene::camera() const {
   camera.target = rod.position(0.5 * (rod.beginParameter() + rod.endParameter()));
   camera.eye = camera.target + Vec3(0.2, 0.06, 0.08);
   return camera;
-}
-
-void KnotScene::appendState(std::vector<double>& state) const {
-  appendWorldState(physics_, state);
 }
 
 }  // namespace rope::demos

@@ -14,8 +14,7 @@
 #include <memory>
 
 #include "bullet_bridge/rope_object.h"
-#include "demos/scenes/demo_scene.h"
-#include "demos/scenes/physics_world.h"
+#include "demos/scenes/world_scene.h"
 
 namespace rope::demos {
 
@@ -56,21 +55,16 @@ struct KnotRegion {
 };
 KnotRegion knotRegion(const bullet::RopeObject& rope, const bullet::ContactReport& report);
 
-class KnotScene : public DemoScene {
+class KnotScene : public WorldScene {
  public:
   explicit KnotScene(const KnotSceneSettings& settings);
 
-  double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
-  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const bullet::RopeObject& rope() const { return *rope_; }
-  PhysicsWorld& physics() { return physics_; }
-  const PhysicsWorld& physics() const { return physics_; }
-  double time() const { return time_; }
   KnotRegion knot() const { return knotRegion(*rope_, physics_.ropes().lastReport()); }
   // Distance between the two grippers' pins, m.
   double endSeparation() const;
@@ -81,12 +75,10 @@ class KnotScene : public DemoScene {
   void moveGrippers(double h);
 
   KnotSceneSettings settings_;
-  PhysicsWorld physics_;
   std::unique_ptr<bullet::RopeObject> rope_;
   btRigidBody* grippers_[2] = {nullptr, nullptr};
   int pins_[2] = {0, 0};
   btVector3 pinPoints_[2];
-  double time_ = 0.0;
 };
 
 }  // namespace rope::demos

@@ -11,19 +11,11 @@
 namespace rope::demos {
 
 PhysicsWorld::PhysicsWorld(const btVector3& gravity)
-    : configuration_(std::make_unique<btDefaultCollisionConfiguration>()),
-      dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
-      broadphase_(std::make_unique<btDbvtBroadphase>()),
-      solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
-      world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
-                                                       configuration_.get())),
-      ropes_(std::make_unique<bullet::RopeWorld>(*world_)) {
-  world_->setGravity(gravity);
-}
+    : bullet_(std::make_unique<BulletWorld>(gravity)), ropes_(std::make_unique<bullet::RopeWorld>(bullet_->world)) {}
 
 PhysicsWorld::~PhysicsWorld() {
   ropes_.reset();  // takes its action and any remaining rope capsules out of the world
-  for (auto& body : bodies_) world_->removeRigidBody(body.get());
+  for (auto& body : bodies_) bullet_->world.removeRigidBody(body.get());
 }
 
 btRigidBody* PhysicsWorld::addBox(const btVector3& halfExtents, double mass, const btTransform& transform) {
@@ -39,7 +31,7 @@ btRigidBody* PhysicsWorld::addBody(std::unique_ptr<btCollisionShape> shape, doub
   info.m_startWorldTransform = transform;
   info.m_friction = btScalar(0.5);
   bodies_.push_back(std::make_unique<btRigidBody>(info));
-  world_->addRigidBody(bodies_.back().get());
+  bullet_->world.addRigidBody(bodies_.back().get());
   return bodies_.back().get();
 }
 
@@ -60,7 +52,7 @@ btRigidBody* PhysicsWorld::addGround(double height) {
   btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shapes_.back().get());
   info.m_friction = btScalar(0.5);
   bodies_.push_back(std::make_unique<btRigidBody>(info));
-  world_->addRigidBody(bodies_.back().get());
+  bullet_->world.addRigidBody(bodies_.back().get());
   return bodies_.back().get();
 }
 
@@ -69,7 +61,7 @@ void PhysicsWorld::draw(render::Scene& scene) const {
   options.skip = [](const btCollisionObject& object) {
     return bullet::CapsuleProxies::ropeOf(object) != nullptr || bullet::KinematicRope::ropeOf(object) != nullptr;
   };
-  render::extractWorld(*world_, meshes_, scene, options);
+  render::extractWorld(bullet_->world, meshes_, scene, options);
 }
 
 StepMeasurements stepAndCheck(PhysicsWorld& physics, double h, const std::string& scene) {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// A stock Bullet world for the rope scenes (and the tests and benchmarks that build them): default
-// collision configuration, dbvt broadphase, sequential-impulse solver and btDiscreteDynamicsWorld,
-// with a RopeWorld on top. Owns every body it creates; the ropes are owned by the scenes.
+// A stock Bullet world for the rope scenes (and the tests and benchmarks that build them): the
+// pipeline of bullet_world.h with a RopeWorld on top. Owns every body it creates; the ropes are
+// owned by the scenes.
 
 #include <btBulletDynamicsCommon.h>
 
@@ -11,9 +11,11 @@
 #include <vector>
 
 #include "bullet_bridge/rope_world.h"
+#include "demos/scenes/bullet_world.h"
 #include "demos/scenes/demo_scene.h"
 #include "render/scene.h"
 #include "render/shape_mesh_cache.h"
+#include "rope/common/types.h"
 
 namespace rope::demos {
 
@@ -24,8 +26,8 @@ class PhysicsWorld {
   PhysicsWorld(const PhysicsWorld&) = delete;
   PhysicsWorld& operator=(const PhysicsWorld&) = delete;
 
-  btDiscreteDynamicsWorld& world() { return *world_; }
-  const btDiscreteDynamicsWorld& world() const { return *world_; }
+  btDiscreteDynamicsWorld& world() { return bullet_->world; }
+  const btDiscreteDynamicsWorld& world() const { return bullet_->world; }
   bullet::RopeWorld& ropes() { return *ropes_; }
   const bullet::RopeWorld& ropes() const { return *ropes_; }
 
@@ -43,17 +45,21 @@ class PhysicsWorld {
   void draw(render::Scene& scene) const;
 
  private:
-  std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
-  std::unique_ptr<btCollisionDispatcher> dispatcher_;
-  std::unique_ptr<btDbvtBroadphase> broadphase_;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
-  std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  std::unique_ptr<BulletWorld> bullet_;
   std::unique_ptr<bullet::RopeWorld> ropes_;
   std::vector<std::unique_ptr<btTriangleMesh>> triangleMeshes_;  // before shapes_: the mesh shapes point into them
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
   mutable render::ShapeMeshCache meshes_;
 };
+
+// The scenes' conversions at the Bullet boundary (btScalar is float or double, per the Bullet build).
+inline btVector3 toBullet(const Vec3& v) {
+  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
+}
+inline Vec3 toVec3(const btVector3& v) {
+  return Vec3(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z()));
+}
 
 // Advances the world by one fixed step h (s) and checks every rope of its RopeWorld: throws
 // std::runtime_error starting with `scene` if a rope's step or the coupled rope-rope solve failed.

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "demos/scenes/knot_scene.h"
-#include "demos/scenes/scene_state.h"
 #include "rope/common/error.h"
 #include "rope/spline/arc_length.h"
 #include "rope/spline/curve_interpolation.h"
@@ -73,7 +72,7 @@ PointList pileCoilPolyline(const PileSceneSettings& settings) {
   return points;
 }
 
-PileScene::PileScene(const PileSceneSettings& settings) : settings_(settings) {
+PileScene::PileScene(const PileSceneSettings& settings) : WorldScene("pile", settings.timeStep), settings_(settings) {
   const PointList points = pileCoilPolyline(settings);  // validates
   physics_.addGround(0.0);
   rope_ = std::make_unique<bullet::RopeObject>(Rod::fromPolyline(settings.rod, points, Rod::RestShape::kAsGiven),
@@ -81,14 +80,7 @@ PileScene::PileScene(const PileSceneSettings& settings) : settings_(settings) {
   physics_.ropes().addRope(*rope_);
 }
 
-StepMeasurements PileScene::step() {
-  const StepMeasurements counts = stepAndCheck(physics_, settings_.timeStep, "pile");
-  time_ += settings_.timeStep;
-  StepMeasurements measurements = measure();
-  measurements.insertions = counts.insertions;
-  measurements.removals = counts.removals;
-  return measurements;
-}
+StepMeasurements PileScene::step() { return advance(); }
 
 StepMeasurements PileScene::measure() const {
   const Rod& rod = rope_->rod();
@@ -128,10 +120,6 @@ std::optional<render::Camera> PileScene::camera() const {
   camera.target = mean / (kSamples + 1);
   camera.eye = camera.target + Vec3(0.22, 0.2, 0.32);
   return camera;
-}
-
-void PileScene::appendState(std::vector<double>& state) const {
-  appendWorldState(physics_, state);
 }
 
 }  // namespace rope::demos

@@ -8,8 +8,7 @@
 #include <memory>
 
 #include "bullet_bridge/rope_object.h"
-#include "demos/scenes/demo_scene.h"
-#include "demos/scenes/physics_world.h"
+#include "demos/scenes/world_scene.h"
 
 namespace rope::demos {
 
@@ -31,27 +30,21 @@ struct PileSceneSettings {
 // The initial coil as a polyline (m), one point per ~3 cm. Throws InvalidArgument naming the field.
 PointList pileCoilPolyline(const PileSceneSettings& settings);
 
-class PileScene : public DemoScene {
+class PileScene : public WorldScene {
  public:
   explicit PileScene(const PileSceneSettings& settings);
 
-  double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
-  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   const bullet::RopeObject& rope() const { return *rope_; }
-  PhysicsWorld& physics() { return physics_; }
-  double time() const { return time_; }
   double heapHeight() const;  // m, highest point of the rope's centre line
 
  private:
   PileSceneSettings settings_;
-  PhysicsWorld physics_;
   std::unique_ptr<bullet::RopeObject> rope_;
-  double time_ = 0.0;
 };
 
 }  // namespace rope::demos

@@ -3,10 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 
 #include "rope/common/error.h"
-#include "demos/scenes/scene_state.h"
 
 namespace rope::demos {
 
@@ -49,7 +47,8 @@ std::unique_ptr<btTriangleMesh> flatGrid(double hx, double hz, double cell) {
 
 }  // namespace
 
-RestingRopeScene::RestingRopeScene(const RestingRopeSceneSettings& settings) : settings_(settings) {
+RestingRopeScene::RestingRopeScene(const RestingRopeSceneSettings& settings)
+    : WorldScene("rest", settings.timeStep), settings_(settings) {
   validate(settings);
   const double halfWidth = 0.5 * settings.spacing * (settings.ropeCount - 1);
   const double hx = 0.5 * settings.ropeLength + 0.5;  // the surface reaches 0.5 m past the rope ends
@@ -111,14 +110,7 @@ double RestingRopeScene::lowestPoint() const {
   return lowest;
 }
 
-StepMeasurements RestingRopeScene::step() {
-  const StepMeasurements counts = stepAndCheck(physics_, settings_.timeStep, "rest");
-  time_ += settings_.timeStep;
-  StepMeasurements measurements = measure();
-  measurements.insertions = counts.insertions;
-  measurements.removals = counts.removals;
-  return measurements;
-}
+StepMeasurements RestingRopeScene::step() { return advance(); }
 
 StepMeasurements RestingRopeScene::measure() const {
   StepMeasurements total;
@@ -148,7 +140,5 @@ std::optional<render::Camera> RestingRopeScene::camera() const {
   camera.eye = Vec3(0.3, 0.6, 1.2 + settings_.spacing * settings_.ropeCount);
   return camera;
 }
-
-void RestingRopeScene::appendState(std::vector<double>& state) const { appendWorldState(physics_, state); }
 
 }  // namespace rope::demos

@@ -13,8 +13,7 @@
 #include <vector>
 
 #include "bullet_bridge/rope_object.h"
-#include "demos/scenes/demo_scene.h"
-#include "demos/scenes/physics_world.h"
+#include "demos/scenes/world_scene.h"
 
 namespace rope::demos {
 
@@ -30,24 +29,20 @@ struct RestingRopeSceneSettings {
   bullet::BulletRopeSettings bridge;  // defaults
 };
 
-class RestingRopeScene : public DemoScene {
+class RestingRopeScene : public WorldScene {
  public:
   // Throws InvalidArgument naming the field for bad settings.
   explicit RestingRopeScene(const RestingRopeSceneSettings& settings);
   ~RestingRopeScene() override;
 
-  double timeStep() const override { return settings_.timeStep; }
   // Sums over the ropes (controlPoints too); maxima of strain and penetration.
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
-  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
   int ropeCount() const { return static_cast<int>(ropes_.size()); }
   const bullet::RopeObject& rope(int i) const { return *ropes_.at(static_cast<std::size_t>(i)); }
-  PhysicsWorld& physics() { return physics_; }
-  double time() const { return time_; }
   // Largest control point count over the ropes.
   int maxControlPoints() const;
   // Largest speed of any control point of any rope, m/s (how still the ropes are).
@@ -57,9 +52,7 @@ class RestingRopeScene : public DemoScene {
 
  private:
   RestingRopeSceneSettings settings_;
-  PhysicsWorld physics_;
   std::vector<std::unique_ptr<bullet::RopeObject>> ropes_;
-  double time_ = 0.0;
 };
 
 }  // namespace rope::demos

@@ -33,7 +33,7 @@ void validate(const SweepSceneSettings& settings) {
 
 }  // namespace
 
-SweepScene::SweepScene(const SweepSceneSettings& settings) : settings_(settings) {
+SweepScene::SweepScene(const SweepSceneSettings& settings) : WorldScene("sweep", settings.timeStep), settings_(settings) {
   validate(settings);
   physics_.addGround(0.0);
   // The field straddles the circle's rim at x = circleRadius, so the hose crosses it twice a turn.
@@ -78,13 +78,12 @@ double SweepScene::largestBoxDisplacement() const {
 }
 
 StepMeasurements SweepScene::step() {
-  const btScalar h = static_cast<btScalar>(settings_.timeStep);
-  physics_.world().stepSimulation(h, 1, h);
-  time_ += settings_.timeStep;
+  // The hose is a kinematic rope, not one of the RopeWorld's: its own report says whether it failed
+  // and how its polygon adapted.
+  StepMeasurements measurements = advance();
   if (rope_->lastStep().targetFailure != nullptr && *rope_->lastStep().targetFailure != '\0') {
     throw std::runtime_error(std::string("sweep: ") + rope_->lastStep().targetFailure);
   }
-  StepMeasurements measurements = measure();
   measurements.insertions = rope_->tractrix().lastReport().insertions;
   measurements.removals = rope_->tractrix().lastReport().merges;
   return measurements;
@@ -117,7 +116,7 @@ std::optional<render::Camera> SweepScene::camera() const {
 }
 
 void SweepScene::appendState(std::vector<double>& state) const {
-  appendWorldState(physics_, state);
+  WorldScene::appendState(state);
   appendTractrixState(rope_->tractrix(), state);
 }
 

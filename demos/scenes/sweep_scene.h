@@ -9,8 +9,7 @@
 #include <vector>
 
 #include "bullet_bridge/kinematic_rope.h"
-#include "demos/scenes/demo_scene.h"
-#include "demos/scenes/physics_world.h"
+#include "demos/scenes/world_scene.h"
 
 namespace rope::demos {
 
@@ -26,12 +25,11 @@ struct SweepSceneSettings {
   double timeStep = 1.0 / 240.0;  // s, > 0
 };
 
-class SweepScene : public DemoScene {
+class SweepScene : public WorldScene {
  public:
   explicit SweepScene(const SweepSceneSettings& settings);
   ~SweepScene() override;
 
-  double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
@@ -40,8 +38,6 @@ class SweepScene : public DemoScene {
 
   const bullet::KinematicRope& rope() const { return *rope_; }
   const std::vector<btRigidBody*>& boxes() const { return boxes_; }
-  PhysicsWorld& physics() { return physics_; }
-  double time() const { return time_; }
   // Where the leading end is at simulated time t (m).
   btVector3 path(double t) const;
   // Largest distance a box has moved from where it started, m.
@@ -49,11 +45,9 @@ class SweepScene : public DemoScene {
 
  private:
   SweepSceneSettings settings_;
-  PhysicsWorld physics_;
   std::vector<btRigidBody*> boxes_;
   std::vector<btVector3> starts_;
   std::unique_ptr<bullet::KinematicRope> rope_;
-  double time_ = 0.0;
 };
 
 }  // namespace rope::demos

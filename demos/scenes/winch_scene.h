@@ -9,8 +9,8 @@
 #include <memory>
 
 #include "bullet_bridge/rope_object.h"
-#include "demos/scenes/demo_scene.h"
-#include "demos/scenes/physics_world.h"
+#include "demos/scenes/hanging_box.h"
+#include "demos/scenes/world_scene.h"
 
 namespace rope::demos {
 
@@ -32,22 +32,19 @@ struct WinchSceneSettings {
   static RodSettings defaultRod();
 };
 
-class WinchScene : public DemoScene {
+class WinchScene : public WorldScene {
  public:
   enum class Phase { kSettle, kLower, kHold, kLift, kDone };
 
   explicit WinchScene(const WinchSceneSettings& settings);
 
-  double timeStep() const override { return settings_.timeStep; }
   StepMeasurements step() override;
   StepMeasurements measure() const override;
   void draw(render::Scene& scene) const override;
-  void appendState(std::vector<double>& state) const override;
   std::optional<render::Camera> camera() const override;
 
-  const bullet::RopeObject& rope() const { return *rope_; }
-  const btRigidBody& box() const { return *box_; }
-  double time() const { return time_; }
+  const bullet::RopeObject& rope() const { return *rig_.rope; }
+  const btRigidBody& box() const { return *rig_.box; }
   Phase phase() const { return phase_; }
   // Tension at the winch, N (RopeObject::winchTension).
   double winchTension() const;
@@ -60,11 +57,8 @@ class WinchScene : public DemoScene {
 
  private:
   WinchSceneSettings settings_;
-  PhysicsWorld physics_;
-  btRigidBody* box_ = nullptr;
-  std::unique_ptr<bullet::RopeObject> rope_;
+  HangingBox rig_;
   Phase phase_ = Phase::kSettle;
-  double time_ = 0.0;
 };
 
 }  // namespace rope::demos

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bullet_bridge/rope_world.h"
+#include "demos/scenes/bullet_world.h"
 
 namespace {
 
@@ -27,21 +28,14 @@ using rope::bullet::RopeWorld;
 
 constexpr double kStep = 1.0 / 240.0;
 
-struct World {
-  btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher{&configuration};
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
+// The stock pipeline (demos/scenes/bullet_world.h) with a RopeWorld, static bodies and ropes.
+struct World : rope::demos::BulletWorld {
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::unique_ptr<RopeWorld> ropes;
   std::vector<std::unique_ptr<RopeObject>> ropeObjects;
 
-  World() {
-    world.setGravity(btVector3(0, btScalar(-9.81), 0));
-    ropes = std::make_unique<RopeWorld>(world);
-  }
+  World() : BulletWorld(btVector3(0, btScalar(-9.81), 0)) { ropes = std::make_unique<RopeWorld>(world); }
   ~World() {
     ropes.reset();
     for (auto& body : bodies) world.removeRigidBody(body.get());

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "bullet_bridge/kinematic_rope.h"
+#include "demos/scenes/bullet_world.h"
 
 namespace {
 
@@ -49,12 +50,7 @@ struct StopAction : btActionInterface {
   void debugDraw(btIDebugDraw*) override {}
 };
 
-struct World {
-  btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher{&configuration};
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
+struct World : rope::demos::BulletWorld {
   btBoxShape boxShape{btVector3(btScalar(0.025), btScalar(0.025), btScalar(0.025))};
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::unique_ptr<KinematicRope> rope;
@@ -62,8 +58,7 @@ struct World {
   StartAction startAction{&watch};
   StopAction stopAction{&watch};
 
-  explicit World(bool boxes) {
-    world.setGravity(btVector3(0, 0, 0));
+  explicit World(bool boxes) : BulletWorld(btVector3(0, 0, 0)) {
     if (!boxes) return;
     btVector3 inertia(0, 0, 0);
     boxShape.calculateLocalInertia(btScalar(0.2), inertia);

@@ -12,6 +12,7 @@
 
 #include "bullet_bridge/rope_world.h"
 #include "demos/scenes/crane_scene.h"
+#include "demos/scenes/hanging_box.h"
 #include "demos/scenes/physics_world.h"
 #include "rope/common/error.h"
 #include "tests/rope/rod/rod_test_util.h"
@@ -109,14 +110,13 @@ TEST(AttachmentScenario, HundredKilogramBoxOnLightRopeIsStable) {
 // Removing the body attachment at run time lets the box fall.
 TEST(AttachmentScenario, RemovedAttachmentReleasesTheBox) {
   demos::PhysicsWorld physics;
-  btRigidBody* box = physics.addBox(btVector3(0.1, 0.1, 0.1), 1.0, btVector3(0, 0.9, 0));
-  box->setActivationState(DISABLE_DEACTIVATION);
-  RodSettings rod = demos::CraneSceneSettings::defaultRod();
-  rod.restLength = 1.0;
-  RopeObject rope(Rod::fromSegment(rod, Vec3(0, 2, 0), Vec3(0, 1, 0)));
-  physics.ropes().addRope(rope);
-  rope.attachToPoint(0.0, btVector3(0, 2, 0));
-  const int hook = rope.attachToBody(1.0, *box, btVector3(0, 0.1, 0));
+  // The crane's rig: a 1 kg box (0.1 m half extent) on 1 m of the crane's rope pinned at y = 2 m.
+  const demos::HangingBox rig =
+      demos::hangBox(physics, {1.0, 1.0, 0.1, demos::CraneSceneSettings::defaultRod(), {}, {}}, Vec3(0, 2, 0),
+                     Vec3(0, 1, 0));
+  RopeObject& rope = *rig.rope;
+  const btRigidBody* box = rig.box;
+  const int hook = rig.boxAttachment;
   for (int i = 0; i < stepsFor(1.0); ++i) physics.world().stepSimulation(btScalar(kStep), 1, btScalar(kStep));
   EXPECT_NEAR(box->getCenterOfMassPosition().y(), 0.9, 0.01);
   EXPECT_GT(rope.attachments()[1].lastForce.y(), -10.0);

@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "bullet_bridge/rope_world.h"
+#include "demos/scenes/hanging_box.h"
 #include "demos/scenes/physics_world.h"
 #include "rope/common/error.h"
 #include "support/elastica.h"
@@ -205,15 +206,15 @@ TEST(ClampToBody, BadInputNamesTheArgumentAndChangesNothing) {
 TEST(Tension, HangingRopeCarriesTheWeightBelow) {
   demos::PhysicsWorld physics;
   const double mass = 2.0;
-  btRigidBody* box = physics.addBox(btVector3(0.05, 0.05, 0.05), mass, btVector3(0, 0.95, 0));
-  box->setActivationState(DISABLE_DEACTIVATION);
-  box->setDamping(btScalar(0.5), btScalar(0.5));
   RodSettings rod;
   rod.massDamping = 5.0;
-  RopeObject rope(Rod::fromSegment(rod, Vec3(0, 2, 0), Vec3(0, 1, 0)));
-  physics.ropes().addRope(rope);
-  const int top = rope.attachToPoint(0.0, btVector3(0, 2, 0));
-  const int bottom = rope.attachToBody(1.0, *box, btVector3(0, 0.05, 0));
+  // A 2 kg box (0.05 m half extent) on 1 m of rope pinned at y = 2 m; both damped so they settle.
+  const demos::HangingBox rig = demos::hangBox(physics, {1.0, mass, 0.05, rod, {}, {}}, Vec3(0, 2, 0), Vec3(0, 1, 0));
+  rig.box->setDamping(btScalar(0.5), btScalar(0.5));
+  RopeObject& rope = *rig.rope;
+  const btRigidBody* box = rig.box;
+  const int top = rig.pin;
+  const int bottom = rig.boxAttachment;
   stepWorld(physics.world(), 1440);
   const double mu = rod.effectiveLinearDensity();
   double worst = 0.0;

@@ -16,19 +16,9 @@
 namespace rope::bullet {
 namespace {
 
+using test::contactsWith;
 using test::placement;
 using test::vectorNear;
-using test::worldCapsule;
-
-std::vector<Contact> contactsWith(const btCollisionShape& shape, const btVector3& a,
-                                  const btVector3& b, btScalar radius, double margin) {
-  btCollisionObject object;
-  object.setCollisionShape(const_cast<btCollisionShape*>(&shape));
-  object.setWorldTransform(placement());
-  std::vector<Contact> contacts;
-  findContacts(worldCapsule(placement(), a, b, radius), object, margin, contacts);
-  return contacts;
-}
 
 const Contact& deepest(const std::vector<Contact>& contacts) {
   return *std::min_element(contacts.begin(), contacts.end(),

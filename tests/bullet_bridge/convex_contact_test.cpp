@@ -16,22 +16,11 @@
 namespace rope::bullet {
 namespace {
 
+using test::contactsWith;
 using test::placement;
 using test::vectorNear;
-using test::worldCapsule;
 
 constexpr double kExact = 1e-9;
-
-// Contacts between a capsule given in the body's local frame and `shape` placed at placement().
-std::vector<Contact> contactsWith(const btCollisionShape& shape, const btVector3& a,
-                                  const btVector3& b, btScalar radius, double margin) {
-  btCollisionObject object;
-  object.setCollisionShape(const_cast<btCollisionShape*>(&shape));
-  object.setWorldTransform(placement());
-  std::vector<Contact> contacts;
-  findContacts(worldCapsule(placement(), a, b, radius), object, margin, contacts);
-  return contacts;
-}
 
 // Checks one contact against an analytic distance and local-frame normal / body point, plus the
 // convention pointOnCapsule - pointOnBody = distance * normal.

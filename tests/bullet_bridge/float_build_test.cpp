@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Scenario test that builds in both Bullet precisions (it needs no scene builders, so the float
-// build of tests/bullet_bridge/float_build_check.cmake compiles only the rope and the bridge): a rope
+// build, bullet_bridge.float_build_scenario, compiles only the rope and the bridge): a rope
 // dropped onto a box comes to rest on it, a rope hitting a free box conserves momentum (to btScalar
 // round-off: Bullet keeps the box's velocity in btScalar), and a rope dropped across another one on
 // the box comes to rest on it (rope-rope contact through the same broadphase).
@@ -13,23 +13,19 @@
 #include <limits>
 
 #include "bullet_bridge/rope_world.h"
+#include "demos/scenes/bullet_world.h"
 
 namespace rope::bullet {
 namespace {
 
 constexpr double kStep = 1.0 / 240.0;
 
-struct World {
-  btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher{&configuration};
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
+// The stock pipeline (demos/scenes/bullet_world.h) with one box.
+struct World : demos::BulletWorld {
   btBoxShape boxShape{btVector3(btScalar(0.6), btScalar(0.1), btScalar(0.3))};
   std::unique_ptr<btRigidBody> box;
 
-  World(double gravity, double mass) {
-    world.setGravity(btVector3(0, static_cast<btScalar>(-gravity), 0));
+  World(double gravity, double mass) : BulletWorld(btVector3(0, static_cast<btScalar>(-gravity), 0)) {
     btVector3 inertia(0, 0, 0);
     if (mass > 0) boxShape.calculateLocalInertia(static_cast<btScalar>(mass), inertia);
     btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), nullptr, &boxShape, inertia);

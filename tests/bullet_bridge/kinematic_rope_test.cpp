@@ -18,6 +18,7 @@
 
 #include "bullet_bridge/find_contacts.h"
 #include "bullet_bridge/rope_world.h"
+#include "demos/scenes/bullet_world.h"
 #include "rope/common/error.h"
 
 namespace rope::bullet {
@@ -25,16 +26,12 @@ namespace {
 
 constexpr double kStep = 1.0 / 240.0;
 
-struct World {
-  btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher{&configuration};
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
+// The stock pipeline (demos/scenes/bullet_world.h) and the boxes a test adds to it.
+struct World : demos::BulletWorld {
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
 
-  explicit World(double gravity = 0.0) { world.setGravity(btVector3(0, static_cast<btScalar>(-gravity), 0)); }
+  explicit World(double gravity = 0.0) : BulletWorld(btVector3(0, static_cast<btScalar>(-gravity), 0)) {}
   ~World() {
     for (auto& body : bodies) world.removeRigidBody(body.get());
   }

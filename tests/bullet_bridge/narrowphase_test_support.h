@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Shared helpers of the narrowphase tests: placed bodies and vector comparisons.
+// Shared helpers of the narrowphase tests: placed bodies, their contacts and vector comparisons.
 
 #include <btBulletCollisionCommon.h>
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "bullet_bridge/capsule.h"
+#include "bullet_bridge/contact.h"
+#include "bullet_bridge/find_contacts.h"
 
 namespace rope::bullet::test {
 
@@ -24,6 +28,18 @@ inline Capsule worldCapsule(const btTransform& bodyToWorld, const btVector3& a, 
   capsule.b = bodyToWorld * b;
   capsule.radius = radius;
   return capsule;
+}
+
+// Contacts (findContacts) between a capsule given in the body's local frame and `shape` placed at
+// placement().
+inline std::vector<Contact> contactsWith(const btCollisionShape& shape, const btVector3& a,
+                                         const btVector3& b, btScalar radius, double margin) {
+  btCollisionObject object;
+  object.setCollisionShape(const_cast<btCollisionShape*>(&shape));
+  object.setWorldTransform(placement());
+  std::vector<Contact> contacts;
+  findContacts(worldCapsule(placement(), a, b, radius), object, margin, contacts);
+  return contacts;
 }
 
 inline ::testing::AssertionResult vectorNear(const btVector3& actual, const btVector3& expected,

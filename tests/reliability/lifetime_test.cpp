@@ -2,7 +2,7 @@
 // Bodies that leave and objects destroyed in any order (issue 17, "Memory errors"). Freed memory is
 // made inaccessible (test::Guarded), so a use after free stops these tests with SIGSEGV in a plain
 // release build; the default test run also builds and runs this binary under AddressSanitizer
-// (lifetime_asan_check.cmake), and the sanitize preset runs it with ASan and UBSan.
+// (reliability.lifetime_under_asan), and the sanitize preset runs it with ASan and UBSan.
 //   - a body attached to a rope, removed from the world and deleted, then a step (was: heap use after
 //     free in RopeObject::beginSubstep);
 //   - the Bullet world destroyed before the RopeWorld, before a rope, or before a KinematicRope's
@@ -38,7 +38,7 @@ btRigidBody::btRigidBodyConstructionInfo boxInfo(btCollisionShape& shape, double
   return info;
 }
 
-// Which build ran these tests (lifetime_asan_check.cmake looks for this line).
+// Which build ran these tests (reliability.lifetime_under_asan looks for this line).
 TEST(Lifetime, ReportsWhetherAddressSanitizerIsOn) {
 #if defined(__SANITIZE_ADDRESS__)
   std::printf("lifetime tests: AddressSanitizer on\n");

@@ -8,21 +8,14 @@
 
 #include "rope/spline/curve_interpolation.h"
 #include "rope/spline/knot_insertion.h"
+#include "tests/rope/rod/rod_test_util.h"
 
 namespace rope {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::straightRest;
 
-PointList straightRest(const KnotVector& knots) {
-  PointList rest;
-  for (int i = 0; i < knots.controlPointCount(); ++i) {
-    double sum = 0.0;
-    for (int k = 1; k <= knots.degree(); ++k) sum += knots[i + k];
-    rest.emplace_back(sum / knots.degree(), 0.0, 0.0);
-  }
-  return rest;
-}
+constexpr double kPi = 3.14159265358979323846;
 
 TEST(Bending, ForceAndStiffnessMatchFiniteDifferences) {
   const KnotVector knots = KnotVector::clampedUniform(3, 9, 0.0, 1.0);

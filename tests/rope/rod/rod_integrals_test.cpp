@@ -11,20 +11,12 @@
 #include "rope/spline/gauss_legendre.h"
 #include "rope/spline/knot_insertion.h"
 #include "rope/spline/knot_removal.h"
+#include "tests/rope/rod/rod_test_util.h"
 
 namespace rope {
 namespace {
 
-// Straight rest curve along x at the Greville abscissae: l0' = 1.
-PointList straightRest(const KnotVector& knots) {
-  PointList rest;
-  for (int i = 0; i < knots.controlPointCount(); ++i) {
-    double sum = 0.0;
-    for (int k = 1; k <= knots.degree(); ++k) sum += knots[i + k];
-    rest.emplace_back(sum / knots.degree(), 0.0, 0.0);
-  }
-  return rest;
-}
+using test::straightRest;
 
 // Independent reference: integral over the whole valid range of f(s), 24 Gauss points per span, with
 // the single-function evaluator basisFunction() (no shared code with the rod's factored storage).

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
 #include <vector>
 
+#include "rope/common/error.h"
 #include "rope/rod/rod.h"
 
 namespace rope::test {
@@ -45,6 +47,37 @@ inline ::testing::AssertionResult sameState(const RodSnapshot& a, const RodSnaps
       return ::testing::AssertionFailure() << "pin " << i << " differs";
   }
   return ::testing::AssertionSuccess();
+}
+
+// A bad call on a live rod and the parameter its InvalidArgument must name.
+struct RodCall {
+  const char* parameter;
+  std::function<void(Rod&)> call;
+};
+
+// Every call must throw InvalidArgument naming its parameter and leave `rod` bitwise as it was.
+inline void expectEachCallRejected(Rod& rod, const std::vector<RodCall>& calls) {
+  const RodSnapshot before(rod);
+  for (const RodCall& c : calls) {
+    try {
+      c.call(rod);
+      ADD_FAILURE() << "no exception for " << c.parameter;
+    } catch (const InvalidArgument& e) {
+      EXPECT_EQ(e.parameter(), c.parameter) << e.what();
+    }
+    EXPECT_TRUE(sameState(before, RodSnapshot(rod))) << c.parameter;
+  }
+}
+
+// Straight rest curve along x at the Greville abscissae (l0' = 1): the energy tests' reference rod.
+inline PointList straightRest(const KnotVector& knots) {
+  PointList rest;
+  for (int i = 0; i < knots.controlPointCount(); ++i) {
+    double sum = 0.0;
+    for (int k = 1; k <= knots.degree(); ++k) sum += knots[i + k];
+    rest.emplace_back(sum / knots.degree(), 0.0, 0.0);
+  }
+  return rest;
 }
 
 // Lowest point of the curve along -gravity (y), sampled finely.

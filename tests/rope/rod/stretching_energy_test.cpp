@@ -8,19 +8,12 @@
 
 #include "rope/spline/knot_insertion.h"
 #include "rope/spline/knot_vector.h"
+#include "tests/rope/rod/rod_test_util.h"
 
 namespace rope {
 namespace {
 
-PointList straightRest(const KnotVector& knots) {
-  PointList rest;
-  for (int i = 0; i < knots.controlPointCount(); ++i) {
-    double sum = 0.0;
-    for (int k = 1; k <= knots.degree(); ++k) sum += knots[i + k];
-    rest.emplace_back(sum / knots.degree(), 0.0, 0.0);
-  }
-  return rest;
-}
+using test::straightRest;
 
 // A random 3D configuration: the rest layout scaled by `stretch` along a random direction, bent and
 // perturbed.

@@ -61,8 +61,10 @@ ContactSpring attachmentSpring(double stiffness, double damping, const Vec3& rop
 // which is the spring of attachmentSpring() premultiplied by A^-1, A = I + (h^2 k + h c) W: a spring in
 // series with the body's inertia. The rope's side stays implicit and the body gets exactly -f h, so no
 // stiffness cap is needed for stability (a contact's explicit impulse needs capForBody), and a heavy
-// load hangs off the rope by its weight / stiffness, not by a capped stiffness: a 10 kg ball on the
-// default 1e5 N/m at 1/60 s sits 3.7 mm off the rope's end where a capped spring let it sag 1.1 cm.
+// load hangs off the rope by its weight / stiffness, not by a capped stiffness. v_p includes the
+// body's own forces over the step (pointAccelerationFromForces: its weight), so a 10 kg ball on the
+// default 1e5 N/m sits W / k = 0.98 mm off the rope's end at 1/60 s (3.7 mm without them, 1.1 cm
+// with a capped spring).
 // W = 0 (a static or kinematic body) leaves the spring as it is.
 void seriesWithBody(ContactSpring& spring, const Eigen::Matrix3d& inverseMass, double h);
 

@@ -12,7 +12,7 @@ bool bodyStateFinite(const btRigidBody& body) {
   const btMatrix3x3& basis = transform.getBasis();
   return isFinite(transform.getOrigin()) && isFinite(basis[0]) && isFinite(basis[1]) && isFinite(basis[2]) &&
          isFinite(body.getLinearVelocity()) && isFinite(body.getAngularVelocity()) && std::isfinite(body.getInvMass()) &&
-         isFinite(body.getInvInertiaDiagLocal());
+         isFinite(body.getInvInertiaDiagLocal()) && isFinite(body.getTotalForce()) && isFinite(body.getTotalTorque());
 }
 
 btRigidBody* dynamicBody(const btCollisionObject& object) {
@@ -25,6 +25,11 @@ Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point) {
   const btRigidBody* body = btRigidBody::upcast(&object);
   if (body == nullptr) return Vec3::Zero();
   return toVec(body->getVelocityInLocalPoint(point - body->getCenterOfMassPosition()));
+}
+
+Vec3 pointAccelerationFromForces(const btRigidBody& body, const btVector3& arm) {
+  const btVector3 angular = body.getInvInertiaTensorWorld() * body.getTotalTorque();
+  return toVec(body.getTotalForce() * body.getInvMass() + angular.cross(arm));
 }
 
 Eigen::Matrix3d pointInverseMass(const btRigidBody& body, const btVector3& arm) {

@@ -13,7 +13,8 @@
 
 namespace rope::bullet {
 
-// Transform, linear and angular velocity, inverse mass and inverse inertia all finite.
+// Transform, linear and angular velocity, inverse mass, inverse inertia and the accumulated force
+// and torque all finite.
 bool bodyStateFinite(const btRigidBody& body);
 
 // The body as a dynamic rigid body that takes impulses, or nullptr for static and kinematic objects
@@ -23,6 +24,14 @@ btRigidBody* dynamicBody(const btCollisionObject& object);
 // Velocity of the body's material point at `point` (world frame), m/s; zero for a collision object
 // that is not a rigid body.
 Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point);
+
+// Acceleration of a dynamic body's material point at `arm` from its centre of mass (world frame) that
+// the forces and torques applied to the body for this step give it, m/s^2: a = F/m + (I^-1 tau) x r,
+// with F and tau Bullet's accumulated totals (the world's gravity, applied at the start of
+// stepSimulation, and the user's applyForce/applyTorque). The body integrates them in its next step
+// whatever the rope does; an attachment that predicts the body point without them mistakes the
+// hanging load's fall under gravity, which the rope's own impulse cancels, for stretch.
+Vec3 pointAccelerationFromForces(const btRigidBody& body, const btVector3& arm);
 
 // The inverse-mass matrix of a dynamic body's material point at `arm` from its centre of mass (world
 // frame), m/(N s^2): an impulse J there changes the point's velocity by W J, W = I/m - [r]x I^-1 [r]x

@@ -502,6 +502,11 @@ bool Rod::overstretchedBy(const PointList& next) const {
   // catenary tests start that way); a step that makes the rope as a whole longer than
   // kMaxStepStretch times its rest length, and longer than it was, is garbage. A rope created
   // stretched may relax.
+  // The control polygon is at least as long as the curve and the chords: a polygon within the limit
+  // (every ordinary step) settles it in O(n) without evaluating the curve.
+  double polygon = 0.0;
+  for (size_t i = 1; i < next.size(); ++i) polygon += (next[i] - next[i - 1]).norm();
+  if (!(polygon > kMaxStepStretch * restLength())) return false;
   const double after = chordLength(knots_, next);
   return after > kMaxStepStretch * restLength() && after > chordLength(knots_, points_);
 }

@@ -18,7 +18,7 @@
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include "bullet_bridge/bullet_precision.h"
-#include "bullet_bridge/contact_response.h"
+#include "bullet_bridge/contact/contact_response.h"
 
 namespace rope::bullet {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bullet_bridge/bullet_math.h"
+#include "bullet_bridge/detail/bullet_math.h"
 
 namespace rope::bullet {
 

@@ -29,7 +29,7 @@
 
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/capsule.h"
-#include "bullet_bridge/rope_shape.h"
+#include "bullet_bridge/collision_object/rope_shape.h"
 #include "rope/rod/rod.h"
 
 namespace rope::bullet {

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <string>
 
-#include "bullet_bridge/concave_contact.h"
-#include "bullet_bridge/convex_contact.h"
-#include "bullet_bridge/convex_support.h"
+#include "bullet_bridge/narrowphase/concave_contact.h"
+#include "bullet_bridge/narrowphase/convex_contact.h"
+#include "bullet_bridge/narrowphase/convex_support.h"
 #include "rope/common/error.h"
 
 namespace rope::bullet {

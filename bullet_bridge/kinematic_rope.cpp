@@ -9,12 +9,12 @@
 #include <string>
 #include <tuple>
 
-#include "bullet_bridge/body_state.h"
+#include "bullet_bridge/detail/body_state.h"
 #include "bullet_bridge/capsule_proxies.h"  // kRopeCapsuleTag: dynamic rope capsules are not bodies to push
 #include "bullet_bridge/find_contacts.h"
-#include "bullet_bridge/guarded_call.h"
-#include "bullet_bridge/kinematic_push.h"
-#include "bullet_bridge/world_membership.h"
+#include "bullet_bridge/detail/guarded_call.h"
+#include "bullet_bridge/contact/kinematic_push.h"
+#include "bullet_bridge/detail/world_membership.h"
 #include "rope/common/error.h"
 #include "rope/spline/bspline_curve.h"
 #include "rope/tractrix/tractrix_segment.h"

@@ -46,10 +46,10 @@
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/capsule.h"
 #include "bullet_bridge/contact.h"
-#include "bullet_bridge/kinematic_push.h"
+#include "bullet_bridge/contact/kinematic_push.h"
 #include "bullet_bridge/kinematic_rope_settings.h"
 #include "bullet_bridge/rope_warnings.h"
-#include "bullet_bridge/swept_box_shape.h"
+#include "bullet_bridge/collision_object/swept_box_shape.h"
 #include "rope/tractrix/tractrix_rope.h"
 
 namespace rope::bullet {

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "bullet_bridge/bullet_math.h"
+#include "bullet_bridge/detail/bullet_math.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
 

@@ -8,9 +8,9 @@
 #include <chrono>
 #include <cmath>
 
-#include "bullet_bridge/body_state.h"
-#include "bullet_bridge/bullet_math.h"
-#include "bullet_bridge/distributed_loads.h"
+#include "bullet_bridge/detail/body_state.h"
+#include "bullet_bridge/detail/bullet_math.h"
+#include "bullet_bridge/contact/distributed_loads.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
 #include "rope/spline/bspline_curve.h"

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "bullet_bridge/attachment.h"
-#include "bullet_bridge/body_contacts.h"
+#include "bullet_bridge/contact/body_contacts.h"
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/contact.h"

@@ -6,11 +6,11 @@
 
 #include <algorithm>
 
-#include "bullet_bridge/body_state.h"
+#include "bullet_bridge/detail/body_state.h"
 #include "bullet_bridge/find_contacts.h"
-#include "bullet_bridge/kinematic_push.h"
+#include "bullet_bridge/contact/kinematic_push.h"
 #include "bullet_bridge/rope_object.h"
-#include "bullet_bridge/world_membership.h"
+#include "bullet_bridge/detail/world_membership.h"
 #include "rope/common/error.h"
 #include "rope/spline/arc_length.h"
 

@@ -13,7 +13,7 @@
 #include <tuple>
 
 #include "bullet_bridge/capsule_proxies.h"
-#include "bullet_bridge/guarded_call.h"
+#include "bullet_bridge/detail/guarded_call.h"
 #include "bullet_bridge/rope_debug_draw.h"
 #include "rope/common/error.h"
 

@@ -45,10 +45,10 @@
 
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/contact_report.h"
-#include "bullet_bridge/rope_dispatch.h"
+#include "bullet_bridge/collision_object/rope_dispatch.h"
 #include "bullet_bridge/friction_combination.h"
 #include "bullet_bridge/rope_object.h"
-#include "bullet_bridge/rope_rope_contact.h"
+#include "bullet_bridge/contact/rope_rope_contact.h"
 #include "bullet_bridge/rope_warnings.h"
 
 namespace rope::bullet {

@@ -70,28 +70,28 @@ set(SPLINEROPE_BULLET_BRIDGE_API_HEADERS
   bullet_bridge/friction_combination.h
 )
 set(SPLINEROPE_BULLET_BRIDGE_SUPPORT_HEADERS
-  bullet_bridge/contact_response.h   # via attachment.h and rope_rope_contact.h
-  bullet_bridge/rope_rope_contact.h  # RopeWorld holds the rope-rope contact solver
-  bullet_bridge/kinematic_push.h     # KinematicRope holds its one-way contacts
-  bullet_bridge/swept_box_shape.h    # the kinematic rope's capsule broadphase shape
-  bullet_bridge/rope_shape.h         # the rope's compound shape, held by capsule_proxies.h
-  bullet_bridge/rope_dispatch.h      # RopeWorld holds the rope pairs' dispatch
-  bullet_bridge/body_contacts.h      # RopeObject holds its rope-body line contact
-  bullet_bridge/line_contact.h       # BodyContacts holds its sampler
-  bullet_bridge/friction_anchors.h   # BodyContacts holds the friction anchors
+  bullet_bridge/contact/contact_response.h         # via attachment.h and rope_rope_contact.h
+  bullet_bridge/contact/rope_rope_contact.h        # RopeWorld holds the rope-rope contact solver
+  bullet_bridge/contact/kinematic_push.h           # KinematicRope holds its one-way contacts
+  bullet_bridge/contact/body_contacts.h            # RopeObject holds its rope-body line contact
+  bullet_bridge/contact/line_contact.h             # BodyContacts holds its sampler
+  bullet_bridge/contact/friction_anchors.h         # BodyContacts holds the friction anchors
+  bullet_bridge/collision_object/swept_box_shape.h # the kinematic rope's capsule broadphase shape
+  bullet_bridge/collision_object/rope_shape.h      # the rope's compound shape, held by capsule_proxies.h
+  bullet_bridge/collision_object/rope_dispatch.h   # RopeWorld holds the rope pairs' dispatch
 )
 set(SPLINEROPE_BULLET_BRIDGE_INTERNAL_HEADERS
-  bullet_bridge/convex_support.h
-  bullet_bridge/convex_contact.h
-  bullet_bridge/concave_contact.h
-  bullet_bridge/segment_convex_distance.h
-  bullet_bridge/segment_segment_distance.h
-  bullet_bridge/segment_triangle_distance.h
-  bullet_bridge/bullet_math.h
-  bullet_bridge/body_state.h
-  bullet_bridge/world_membership.h
-  bullet_bridge/guarded_call.h
-  bullet_bridge/distributed_loads.h
+  bullet_bridge/narrowphase/convex_support.h
+  bullet_bridge/narrowphase/convex_contact.h
+  bullet_bridge/narrowphase/concave_contact.h
+  bullet_bridge/narrowphase/segment_convex_distance.h
+  bullet_bridge/narrowphase/segment_segment_distance.h
+  bullet_bridge/narrowphase/segment_triangle_distance.h
+  bullet_bridge/contact/distributed_loads.h
+  bullet_bridge/detail/bullet_math.h
+  bullet_bridge/detail/body_state.h
+  bullet_bridge/detail/world_membership.h
+  bullet_bridge/detail/guarded_call.h
 )
 
 set(SPLINEROPE_RENDER_API_HEADERS

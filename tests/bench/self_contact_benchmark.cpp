@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cost of self-contact (bullet_bridge/rope_rope_contact.h) in the scenes that need it: the knot scene
+// Cost of self-contact (bullet_bridge/contact/rope_rope_contact.h) in the scenes that need it: the knot scene
 // while the knot is held tight, the pile scene once the heap has formed (both in ms of wall time per
 // simulated second), and how the cost grows with the rope: piles of non-adaptive ropes with
 // n = 32, 128, 512 control points (ms per 1/240 s step). Counters split off the rope-rope part

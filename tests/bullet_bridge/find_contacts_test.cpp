@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "narrowphase_test_support.h"
+#include "narrowphase/narrowphase_test_support.h"
 #include "rope/common/error.h"
 
 namespace rope::bullet {

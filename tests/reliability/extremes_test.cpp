@@ -41,7 +41,7 @@
 #include <string>
 #include <vector>
 
-#include "bullet_bridge/bullet_math.h"
+#include "bullet_bridge/detail/bullet_math.h"
 #include "bullet_bridge/rope_object.h"
 #include "demos/scenes/physics_world.h"
 #include "rope/common/error.h"

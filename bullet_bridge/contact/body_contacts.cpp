@@ -1,0 +1,427 @@
+// SPDX-License-Identifier: MIT
+#include "bullet_bridge/contact/body_contacts.h"
+
+#include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
+#include <LinearMath/btAabbUtil2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/LU>
+
+#include "bullet_bridge/detail/body_state.h"
+#include "bullet_bridge/detail/bullet_math.h"
+#include "bullet_bridge/find_contacts.h"
+#include "rope/common/error.h"
+#include "rope/spline/bspline_basis.h"
+
+namespace rope::bullet {
+
+namespace {
+
+// A world point in the frame of `frame`, computed componentwise: Bullet's SIMD inverse multiplies
+// unused vector lanes, which raised FE_INVALID under FP traps in the float build.
+btVector3 toLocal(const btTransform& frame, const Vec3& point) {
+  const btVector3 offset = toBullet(point) - frame.getOrigin();
+  const btMatrix3x3& basis = frame.getBasis();
+  btVector3 local(0, 0, 0);  // all four lanes set: the float build warns of the unused fourth (-Werror)
+  for (int i = 0; i < 3; ++i)
+    local[i] = basis[0][i] * offset.x() + basis[1][i] * offset.y() + basis[2][i] * offset.z();
+  return local;
+}
+
+Vec3 tangential(const Vec3& v, const Vec3& normal) { return v - normal * normal.dot(v); }
+
+// Relative tolerance on mu f_n before a sticking sample is switched to sliding: round-off of the
+// end-of-step force must not flip samples that sit exactly on the friction cone.
+constexpr double kConeTolerance = 1e-6;
+// A sliding sample's friction bound is re-estimated when its end-of-step normal force differs by more.
+constexpr double kNormalForceTolerance = 0.05;
+// Most sliding samples whose friction bounds are solved exactly (solveSlidingBounds: an O(m^3) dense
+// solve); beyond, the bounds are re-estimated pass by pass.
+constexpr int kMaxExactBounds = 192;
+// Row-sum norm of the bounds' coupling M above which they are solved exactly (below it, the error of
+// the pass-by-pass re-bound shrinks by at least this factor per pass).
+constexpr double kStrongBoundCoupling = 0.5;
+
+}  // namespace
+
+namespace {
+const char* const kFrictionCombiner = "friction combiner";
+}  // namespace
+
+void BodyContacts::reset() {
+  samples_.clear();
+  anchors_.clear();
+}
+
+void BodyContacts::gather(const Rod& rod, const CapsuleProxies& proxies,
+                          const std::vector<const btCollisionObject*>& candidates, const BulletRopeSettings& settings,
+                          const Exclusion& excluded, const FrictionOf& friction, double h,
+                          std::vector<RopeContactRecord>& records, RopeStepRecord& step) {
+  samples_.clear();
+  for (const btCollisionObject* object : candidates) {
+    if (!isFinite(object->getWorldTransform())) {
+      ++step.skippedBodies;  // a NaN body must not poison the rope
+      continue;
+    }
+    if (object->getBroadphaseHandle() == nullptr) continue;
+    const std::size_t first = samples_.size();
+    try {
+      gatherBody(rod, proxies, *object, settings, excluded, friction, h, step);
+    } catch (const InvalidArgument& error) {
+      if (error.parameter() == kFrictionCombiner) throw;  // the user's combiner: fails the substep
+      samples_.resize(first);
+      ++step.skippedBodies;  // a shape the narrowphase does not support
+    }
+  }
+
+  for (Sample& sample : samples_) {
+    const Contact& contact = sample.geometry.contact;
+    const double distance = static_cast<double>(contact.distance);
+    RopeContactRecord record;
+    record.body = sample.object;
+    record.s = sample.geometry.s;
+    record.point = contact.pointOnBody;
+    record.normal = contact.normal;
+    record.depth = -distance;
+    step.maxPenetration = std::max(step.maxPenetration, -distance);
+    sample.active = contactActive(distance, sample.normal, sample.ropeVelocity, sample.bodyVelocity, h);
+    if (sample.active) {
+      sample.spring = sampleSpring(sample.law, distance, sample.normal, sample.ropeVelocity, sample.bodyVelocity, h,
+                                   sample.friction);
+      ++step.contacts;
+    }
+    record.active = sample.active;
+    sample.record = static_cast<int>(records.size());
+    records.push_back(record);
+  }
+}
+
+void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, const btCollisionObject& object,
+                              const BulletRopeSettings& settings, const Exclusion& excluded,
+                              const FrictionOf& friction, double h, RopeStepRecord& step) {
+  const btBroadphaseProxy* handle = object.getBroadphaseHandle();
+  const double margin = settings.speculativeMargin;
+  const double radius = rod.settings().radius;
+  // How far the body's surface can move in the step: linear speed plus spin times its box's reach.
+  double bodyReach = 0.0;
+  if (const btRigidBody* rigid = btRigidBody::upcast(&object)) {
+    const double spin = static_cast<double>(rigid->getAngularVelocity().length());
+    const double extent = 0.5 * static_cast<double>((handle->m_aabbMax - handle->m_aabbMin).length());
+    bodyReach = h * (static_cast<double>(rigid->getLinearVelocity().length()) + spin * extent);
+    if (!std::isfinite(bodyReach)) {
+      ++step.skippedBodies;
+      return;
+    }
+  }
+  btRigidBody* body = dynamicBody(object);
+  const std::size_t first = samples_.size();
+  // Midphase: the capsules whose tree leaves (swept boxes, capsule_proxies.h) meet the body's box
+  // grown by its reach, in capsule order.
+  const btScalar grow = static_cast<btScalar>(bodyReach);
+  const btVector3 bodyGrow(grow, grow, grow);
+  proxies.capsulesOverlapping(handle->m_aabbMin - bodyGrow, handle->m_aabbMax + bodyGrow, nearCapsules_, treeStack_);
+  for (const int i : nearCapsules_) {
+    const Capsule capsule = proxies.capsule(i);
+    const CapsuleProxy& proxy = proxies.proxy(i);
+    // Speculative distance: the configured margin plus what rope and body can close in this step,
+    // so a fast rope meets a thin plate before it has passed it.
+    const double ropeReach = h * std::max(rod.velocity(proxy.s0).norm(), rod.velocity(proxy.s1).norm());
+    const double reach = margin + ropeReach + bodyReach;
+    const btScalar grow = static_cast<btScalar>(radius + reach);
+    btVector3 lo = capsule.a, hi = capsule.a;
+    lo.setMin(capsule.b);
+    hi.setMax(capsule.b);
+    lo -= btVector3(grow, grow, grow);
+    hi += btVector3(grow, grow, grow);
+    if (!TestAabbAgainstAabb2(lo, hi, handle->m_aabbMin, handle->m_aabbMax)) continue;
+    if (excluded(object, proxy.s0, proxy.s1)) continue;
+    chordContacts_.clear();
+    findContacts(capsule, object, reach, chordContacts_);
+    if (chordContacts_.empty()) continue;
+    const Contact* nearest = &chordContacts_.front();
+    for (const Contact& c : chordContacts_)
+      if (c.distance < nearest->distance) nearest = &c;
+    scratch_.clear();
+    sampler_.sampleCapsule(rod, i, proxy.s0, proxy.s1, capsule.radius, object, reach, *nearest,
+                           settings.contactQuadraturePoints, scratch_);
+    for (const ContactSample& geometry : scratch_) {
+      Sample sample;
+      sample.geometry = geometry;
+      sample.object = &object;
+      sample.body = body;
+      sample.normal = toVec(geometry.contact.normal);
+      sample.ropeVelocity = rod.velocity(geometry.s);
+      sample.bodyVelocity = pointVelocity(object, geometry.contact.pointOnBody);
+      // Friction state: the stored anchor (interpolated along the curve), or a new one here.
+      const Vec3 slip = tangential(sample.ropeVelocity - sample.bodyVelocity, sample.normal);
+      btVector3 anchor;
+      bool sliding = false;
+      double pressure = -1.0;
+      const bool stored = anchors_.find(object, geometry.s, proxy.s1 - proxy.s0, rod, anchor, sliding, pressure);
+      sample.pressureEstimate = pressure;
+      if (!stored) sliding = slip.norm() >= settings.frictionVelocity;
+      if (sliding && slip.norm() >= settings.frictionVelocity) {
+        sample.friction.sliding = true;
+        sample.friction.direction = slip.normalized();
+        sample.friction.speed = slip.norm();
+      } else if (stored) {
+        sample.friction.displacement = tangential(rod.position(geometry.s) - toVec(anchor), sample.normal);
+      }
+      samples_.push_back(sample);
+    }
+  }
+
+  // The laws: the line law times each sample's weight, capped in sum on a dynamic body.
+  double stiffnessScale = 1.0, dampingScale = 1.0, speculativeScale = 1.0;
+  double frictionDampingLimit = std::numeric_limits<double>::max();
+  if (body != nullptr && samples_.size() > first) {
+    double inverseMass = 0.0, weight = 0.0;
+    for (std::size_t i = first; i < samples_.size(); ++i) {
+      const Contact& c = samples_[i].geometry.contact;
+      inverseMass = std::max(inverseMass, static_cast<double>(body->computeImpulseDenominator(c.pointOnBody, c.normal)));
+      weight += samples_[i].geometry.weight;
+    }
+    if (inverseMass > 0.0) {
+      const double mass = 1.0 / inverseMass, share = settings.bodyStabilityFactor;
+      stiffnessScale = std::min(1.0, share * mass / (h * h * settings.lineContactStiffness * weight));
+      dampingScale = std::min(1.0, share * mass / (h * settings.lineContactDamping * weight + 1e-300));
+      speculativeScale = std::min(1.0, share * mass / (h * settings.lineSpeculativeDamping * weight + 1e-300));
+      frictionDampingLimit = share * mass / (h * static_cast<double>(samples_.size() - first));
+    }
+  }
+  // The pair's coefficient (friction_combination.h), once per body touched.
+  const double mu = samples_.size() > first ? friction(object) : 0.0;
+  if (!(std::isfinite(mu) && mu >= 0.0)) {
+    throw InvalidArgument(kFrictionCombiner, formatValue(mu), "must return a finite value >= 0");
+  }
+  for (std::size_t i = first; i < samples_.size(); ++i) {
+    Sample& sample = samples_[i];
+    const double w = sample.geometry.weight;
+    sample.law.stiffness = settings.lineContactStiffness * w * stiffnessScale;
+    sample.law.damping = settings.lineContactDamping * w * dampingScale;
+    sample.law.speculativeDamping = settings.lineSpeculativeDamping * w * speculativeScale;
+    sample.law.friction = mu;
+    sample.law.frictionVelocity = settings.frictionVelocity;
+    sample.law.frictionDampingLimit = frictionDampingLimit;
+    // Until a solve says otherwise, sliding friction is bounded by the pressure the sample's stretch
+    // ended the last substep with, or else by the penetration force.
+    sample.friction.normalForce =
+        sample.pressureEstimate >= 0.0
+            ? sample.pressureEstimate * w
+            : std::max(0.0, -sample.law.stiffness * static_cast<double>(sample.geometry.contact.distance));
+  }
+}
+
+void BodyContacts::queue(Rod& rod) const {
+  for (const Sample& sample : samples_) {
+    if (!sample.active) continue;
+    rod.addSpringSample(sample.geometry.s, sample.spring.force, sample.spring.stiffness, sample.spring.damping);
+  }
+}
+
+bool BodyContacts::solveSlidingBounds(Rod& rod, double h) {
+  // A sliding sample i pulls the rope with -mu_i f_i d_i, the bound f_i fixed in the trial. The normal
+  // force each sample ends the step with is affine in the trial (endOfStepForce):
+  //   N_j = N_j^trial + g_j . du(s_j),   g_j = -(h K_j + D_j)^T n_j,
+  // and changing the bounds by delta changes the impulses by -mu_i h delta_i d_i, so
+  //   du(s_j) = -sum_i mu_i h delta_i U_ji,   U_ji = velocity at s_j per unit impulse along d_i at s_i
+  // (Rod::trialImpulseResponse, through the trial's own factor). Coulomb's law wants f = N(f):
+  //   (I - M) f = N^trial - M f^used,   M_ji = -mu_i h g_j . U_ji    (docs/method.md §11, active set).
+  // Iterating f instead (one trial per pass with the last pass's N) multiplies the error by M, which
+  // round a support behaves like the capstan's own Volterra operator mu theta: the passes diverged for
+  // mu theta >= pi and a rope that should hold at 0.9 exp(mu theta) slid. Cost: one O(n) solve per
+  // sliding sample and the small dense system.
+  sliding_.clear();
+  if (!exactBounds_) return false;
+  for (std::size_t i = 0; i < samples_.size(); ++i) {
+    const Sample& sample = samples_[i];
+    if (!(sample.active && sample.friction.sliding && sample.law.friction > 0.0)) continue;
+    // On a moving body (a spinning drum) the exact bounds threw a rope wound ten turns round it at
+    // 150 m/s, pass-by-pass ones do not (reliability_extremes_test); not understood yet, so moving
+    // bodies keep the pass-by-pass bounds.
+    if (sample.bodyVelocity.squaredNorm() > 0.0) return false;
+    sliding_.push_back(static_cast<int>(i));
+  }
+  const int m = static_cast<int>(sliding_.size());
+  if (m == 0 || m > kMaxExactBounds) return false;
+  const int n3 = 3 * rod.controlPointCount();
+  responses_.resize(static_cast<std::size_t>(m) * static_cast<std::size_t>(n3));
+  for (int i = 0; i < m; ++i) {
+    const Sample& sample = samples_[static_cast<std::size_t>(sliding_[static_cast<std::size_t>(i)])];
+    rod.trialImpulseResponse(sample.geometry.s, sample.friction.direction,
+                             &responses_[static_cast<std::size_t>(i) * static_cast<std::size_t>(n3)]);
+  }
+  const KnotVector& knots = rod.knots();
+  const int degree = knots.degree();
+  BasisValues basis;
+  boundSystem_.setIdentity(m, m);
+  boundRhs_.resize(m);
+  for (int j = 0; j < m; ++j) {
+    const Sample& sample = samples_[static_cast<std::size_t>(sliding_[static_cast<std::size_t>(j)])];
+    const double s = sample.geometry.s;
+    const int span = knots.findSpan(s);
+    evaluateBasis(knots, span, s, 0, basis);
+    const int first = span - degree;
+    const Vec3 gradient = -(h * sample.spring.stiffness + sample.spring.damping).transpose() * sample.normal;
+    const Vec3 uNew = rod.trialVelocity(s);
+    double rhs = endOfStepForce(sample.spring, sample.ropeVelocity, uNew, h).dot(sample.normal);
+    for (int i = 0; i < m; ++i) {
+      const Sample& other = samples_[static_cast<std::size_t>(sliding_[static_cast<std::size_t>(i)])];
+      const double* response = &responses_[static_cast<std::size_t>(i) * static_cast<std::size_t>(n3)];
+      Vec3 velocity = Vec3::Zero();
+      for (int a = 0; a <= degree; ++a) {
+        const double b = basis.d[0][static_cast<std::size_t>(a)];
+        const double* r = response + 3 * (first + a);
+        velocity += b * Vec3(r[0], r[1], r[2]);
+      }
+      const double coupling = -other.law.friction * h * gradient.dot(velocity);
+      boundSystem_(j, i) -= coupling;
+      rhs -= coupling * other.friction.normalForce;
+    }
+    boundRhs_(j) = rhs;
+  }
+  // Weak coupling (a rope on a flat floor, a heap on the ground: friction barely moves the normal
+  // forces) is left to the pass-by-pass re-bound, which converges there and keeps a resting rope's
+  // friction from following every flicker of its normal forces (solving it too made the 2 m pile's
+  // resting jitter 6 mm/s instead of 3).
+  const double coupling = (boundSystem_ - Eigen::MatrixXd::Identity(m, m)).cwiseAbs().rowwise().sum().maxCoeff();
+  if (coupling < kStrongBoundCoupling) return false;
+  const Eigen::VectorXd bounds = boundSystem_.partialPivLu().solve(boundRhs_);
+  if (!bounds.allFinite()) return false;
+  correction_.assign(static_cast<std::size_t>(n3), 0.0);
+  for (int i = 0; i < m; ++i) {
+    Sample& sample = samples_[static_cast<std::size_t>(sliding_[static_cast<std::size_t>(i)])];
+    // A negative bound is a sample that lifts off: bounded by zero here, released by update().
+    const double bound = std::max(0.0, bounds(i));
+    const double impulse = -sample.law.friction * h * (bound - sample.friction.normalForce);
+    const double* response = &responses_[static_cast<std::size_t>(i) * static_cast<std::size_t>(n3)];
+    for (int c = 0; c < n3; ++c) correction_[static_cast<std::size_t>(c)] += impulse * response[c];
+    sample.friction.normalForce = bound;
+    sample.spring = sampleSpring(sample.law, static_cast<double>(sample.geometry.contact.distance), sample.normal,
+                                 sample.ropeVelocity, sample.bodyVelocity, h, sample.friction);
+  }
+  rod.correctTrial(correction_.data());
+  return true;
+}
+
+bool BodyContacts::update(Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step) {
+  solveSlidingBounds(rod, h);
+  bool changed = false;
+  for (Sample& sample : samples_) {
+    if (!sample.active) continue;
+    const Vec3 uNew = rod.trialVelocity(sample.geometry.s);
+    const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, uNew, h);
+    const double normalForce = force.dot(sample.normal);
+    if (normalForce < 0.0) {
+      sample.active = false;  // pulls the rope onto the body: released for the rest of the substep
+      records[static_cast<std::size_t>(sample.record)].active = false;
+      --step.contacts;
+      changed = true;
+      continue;
+    }
+    const double mu = sample.law.friction;
+    if (!(mu > 0.0)) continue;
+    SampleFriction& friction = sample.friction;
+    if (!friction.sliding) {
+      const Vec3 tangentForce = tangential(force, sample.normal);
+      const double magnitude = tangentForce.norm();
+      if (magnitude <= mu * normalForce * (1.0 + kConeTolerance)) continue;
+      // The spring would need more than mu f_n: the sample slides, along the way the force pushes it.
+      friction.sliding = true;
+      friction.direction = -tangentForce / magnitude;
+      friction.speed = std::max(tangential(uNew - sample.bodyVelocity, sample.normal).norm(), sample.law.frictionVelocity);
+      friction.normalForce = normalForce;
+      changed = true;
+    } else if (std::abs(normalForce - friction.normalForce) >
+               kNormalForceTolerance * std::max(normalForce, friction.normalForce)) {
+      friction.normalForce = normalForce;
+      changed = true;
+    } else {
+      continue;
+    }
+    sample.spring = sampleSpring(sample.law, static_cast<double>(sample.geometry.contact.distance), sample.normal,
+                                 sample.ropeVelocity, sample.bodyVelocity, h, friction);
+  }
+  return changed;
+}
+
+void BodyContacts::finish(Rod& rod, double h, double concentratedContactRatio,
+                          std::vector<RopeContactRecord>& records) {
+  for (const Sample& sample : samples_) {
+    if (!sample.active) continue;
+    const double s = sample.geometry.s;
+    const Vec3 uNew = rod.trialVelocity(s);
+    const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, uNew, h);
+    const btVector3& point = sample.geometry.contact.pointOnBody;
+    RopeContactRecord& record = records[static_cast<std::size_t>(sample.record)];
+    record.force = toBullet(force);
+    record.sticking = !sample.friction.sliding;
+    if (sample.body != nullptr) {
+      // Newton's third law: the body gets exactly the opposite of what the rope felt over the step.
+      sample.body->applyImpulse(toBullet(-force * h), point - sample.body->getCenterOfMassPosition());
+      sample.body->activate();
+    }
+    if (!(sample.law.friction > 0.0)) continue;
+    // The anchor for the next substep, where the body will be after its next integration.
+    const Vec3 xNew = rod.position(s) + h * uNew;
+    const Vec3 bodyMotion = h * sample.bodyVelocity;
+    // Sliding: an anchor that puts the spring at the friction force the sample ends the step with
+    // (x - a = -f_t / k), so a sample that sticks again keeps carrying its load instead of dropping
+    // it on its neighbours (which then slide in turn: a rope round a post crept at mm/s).
+    Vec3 anchorNew = xNew + tangential(force, sample.normal) / sample.law.stiffness;
+    bool slides = false;
+    if (!sample.friction.sliding) {
+      // The anchor moved with the body; keep the spring within the friction cone.
+      anchorNew = rod.position(s) - sample.friction.displacement + bodyMotion;
+      const Vec3 stretch = tangential(xNew - anchorNew, sample.normal);
+      const double limit = sample.law.friction * std::max(0.0, force.dot(sample.normal));
+      const double springForce = sample.law.stiffness * stretch.norm();
+      if (springForce > limit && springForce > 0.0) anchorNew = xNew - stretch * (limit / springForce);
+    } else {
+      const Vec3 slip = tangential(uNew - sample.bodyVelocity, sample.normal);
+      slides = slip.norm() >= sample.law.frictionVelocity && slip.dot(sample.friction.direction) > 0.0;
+    }
+    FrictionAnchor anchor;
+    anchor.body = sample.object;
+    anchor.s = s;
+    anchor.localPoint = toLocal(sample.object->getWorldTransform(), anchorNew - bodyMotion);
+    anchor.sliding = slides;
+    anchor.pressure = std::max(0.0, force.dot(sample.normal)) / sample.geometry.weight;
+    anchors_.add(anchor);
+  }
+  anchors_.commit();
+  markConcentratedLoads(rod, concentratedContactRatio);
+}
+
+void BodyContacts::markConcentratedLoads(Rod& rod, double ratio) const {
+  const KnotVector& knots = rod.knots();
+  std::size_t i = 0;
+  while (i < samples_.size()) {
+    if (!samples_[i].active) {
+      ++i;
+      continue;
+    }
+    // One touching stretch: active samples on one body over consecutive capsules.
+    std::size_t j = i + 1;
+    while (j < samples_.size() && samples_[j].active && samples_[j].object == samples_[i].object &&
+           samples_[j].geometry.capsule - samples_[j - 1].geometry.capsule <= 1)
+      ++j;
+    double length = 0.0, moment = 0.0;
+    for (std::size_t k = i; k < j; ++k) {
+      length += samples_[k].geometry.weight;
+      moment += samples_[k].geometry.weight * samples_[k].geometry.s;
+    }
+    if (length > 0.0) {
+      const double centre = moment / length;
+      const int span = knots.findSpan(centre);
+      const double spanLength = (knots[span + 1] - knots[span]) * rod.restMetric(centre);
+      if (length < ratio * spanLength) rod.markInteraction(centre);
+    }
+    i = j;
+  }
+}
+
+}  // namespace rope::bullet

@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Rope-body contact of one rope in one substep, as a line load (line_contact.h) with sticking
+// friction (contact_response.h: sampleSpring; friction_anchors.h):
+//   gather()  finds the touching stretches of the rope's capsules against the candidate bodies, their
+//             quadrature samples, and each sample's law and friction state at the rod's current state;
+//   queue()   puts the active samples' springs on the rod (Rod::addSpringSample: no knots);
+//   update()  after a trial step, makes contact unilateral and friction Coulomb's: gives sliding
+//             samples the friction bound mu f_n of the normal force they end the step with (solved
+//             exactly, with the trial corrected, where the bounds are strongly coupled, on bodies at
+//             rest and on a rope that touched no rope last substep: docs/method.md §11; otherwise
+//             re-bounded pass by pass), releases samples whose end-of-step normal force
+//             pulls, switches sticking samples whose spring needs more than mu f_n to sliding, and
+//             re-bounds sliding friction where the normal force still moved by more than 5 %; true
+//             if the trial must be solved again;
+//   finish()  after the final trial: the equal and opposite impulse on every dynamic body, the
+//             records, the anchors for the next substep, and the knots the contact geometry needs.
+//
+// Adaptivity follows geometry, not touch: a rope lying along a surface asks for no knot (its
+// samples are not interaction points). A touching stretch much shorter than the knot span around it
+// (BulletRopeSettings::concentratedContactRatio: a thin bar, an edge) is a concentrated load, which a
+// C2 cubic can only carry by kinking at a knot, so its centre is marked as an interaction (a knot
+// there, kept while the load lasts). Wrapping round a curved body bends the control polygon, which
+// the rod's own curvature criterion refines.
+//
+// Dynamic bodies get the samples' forces as explicit impulses, so the sum of the samples' stiffness
+// (and damping) on one body is capped at bodyStabilityFactor * m_eff / h^2 (/ h), m_eff the smallest
+// effective mass along the normals at its contact points.
+//
+// Not API: installed only because rope_object.h includes it; may change in any release.
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <functional>
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "bullet_bridge/bullet_precision.h"
+#include "bullet_bridge/capsule_proxies.h"
+#include "bullet_bridge/contact_report.h"
+#include "bullet_bridge/contact/contact_response.h"
+#include "bullet_bridge/contact/friction_anchors.h"
+#include "bullet_bridge/contact/line_contact.h"
+#include "bullet_bridge/rope_settings.h"
+#include "rope/rod/rod.h"
+
+namespace rope::bullet {
+
+class BodyContacts {
+ public:
+  // Whether contacts of the rope piece [s0, s1] with object are ignored (an attachment sits there).
+  using Exclusion = std::function<bool(const btCollisionObject& object, double s0, double s1)>;
+  // The combined friction coefficient of the rope with object (friction_combination.h).
+  using FrictionOf = std::function<double(const btCollisionObject& object)>;
+
+  // Finds the samples and evaluates their laws; fills records (one per sample, active or not) and
+  // step.maxPenetration / contacts / skippedBodies.
+  void gather(const Rod& rod, const CapsuleProxies& proxies, const std::vector<const btCollisionObject*>& candidates,
+              const BulletRopeSettings& settings, const Exclusion& excluded, const FrictionOf& friction, double h,
+              std::vector<RopeContactRecord>& records, RopeStepRecord& step);
+  void queue(Rod& rod) const;
+  // Whether update() may solve strongly coupled sliding bounds exactly (solveSlidingBounds); default on.
+  void setExactBounds(bool exact) { exactBounds_ = exact; }
+  bool update(Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step);
+  void finish(Rod& rod, double h, double concentratedContactRatio, std::vector<RopeContactRecord>& records);
+  // Forgets the samples of this substep (the anchors stay) / everything.
+  void dropSamples() { samples_.clear(); }
+  void reset();
+  int anchorCount() const { return anchors_.size(); }
+
+ private:
+  struct Sample {
+    ContactSample geometry;
+    btRigidBody* body = nullptr;                // receives the opposite impulse (nullptr: static, kinematic)
+    const btCollisionObject* object = nullptr;
+    Vec3 normal = Vec3::Zero();
+    Vec3 ropeVelocity = Vec3::Zero();           // u(s) before the step
+    Vec3 bodyVelocity = Vec3::Zero();           // of the body point before the step
+    ContactLaw law;                             // weighted: N/m, N s/m
+    SampleFriction friction;
+    double pressureEstimate = -1.0;             // N/m from the stored anchors, < 0: none
+    ContactSpring spring;
+    bool active = false;
+    int record = -1;
+  };
+  void gatherBody(const Rod& rod, const CapsuleProxies& proxies, const btCollisionObject& object,
+                  const BulletRopeSettings& settings, const Exclusion& excluded, const FrictionOf& friction, double h,
+                  RopeStepRecord& step);
+  // Solves the sliding samples' friction bounds f = f_n(f) exactly for the current trial (see the
+  // .cpp) and corrects the trial by the change; false if there was nothing to solve or the small
+  // system failed (the trial is then unchanged).
+  bool solveSlidingBounds(Rod& rod, double h);
+  void capBodies(double h, double share);
+  void markConcentratedLoads(Rod& rod, double ratio) const;
+
+  LineContactSampler sampler_;
+  std::vector<ContactSample> scratch_;
+  std::vector<Contact> chordContacts_;
+  std::vector<int> nearCapsules_;  // gatherBody's midphase result
+  btNodeStack treeStack_;          // and its traversal stack
+  std::vector<Sample> samples_;
+  FrictionAnchors anchors_;
+  // solveSlidingBounds' workspace: the sliding samples, their trial responses (3n each) and the
+  // small dense system.
+  bool exactBounds_ = true;
+  std::vector<int> sliding_;
+  std::vector<double> responses_;
+  std::vector<double> correction_;
+  Eigen::MatrixXd boundSystem_;
+  Eigen::VectorXd boundRhs_;
+};
+
+}  // namespace rope::bullet

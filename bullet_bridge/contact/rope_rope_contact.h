@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Contact between ropes and of a rope with itself ([A] §5.2 knot tying needs the rope to stay out of
+// itself). Candidates are the pairs of rope capsules that Bullet's broadphase reports (RopeWorld
+// reads them from the pair cache with the rope-body pairs). For each pair the capsule axes' closest
+// points (segment_segment_distance.h) give curve parameters sA, sB; the contact is evaluated on the
+// curve itself, d = |C_A(sA) - C_B(sB)| - (r_A + r_B), n = (C_A - C_B)/|C_A - C_B|.
+//
+// Response: the same penalty law with damping, speculative approach and regularised Coulomb friction
+// as rope-body contact (contact_response.h), written in the relative velocity w = C'_A(sA) - C'_B(sB),
+// and coupled implicitly into both ropes' steps at once by rope::CoupledSolve (the ropes' factors get
+// a low-rank correction; no band is broken, nothing is lagged). The impulses are equal and opposite, so
+// rope-rope contact conserves momentum to round-off. As for bodies, contact is unilateral and friction
+// bounded by the actual normal force: contacts that come out pulling are released, contacts the solve
+// predicts to end the step overlapping are switched on, and friction bounds are re-estimated from the
+// end-of-step normal force, at most 6 small solves per substep (the ropes' factors are reused).
+//
+// Excluded: two points of one rope closer than BulletRopeSettings::selfContactExclusion along the rest
+// curve (neighbouring capsules always overlap; that is the rope, not a contact), the same across the
+// cut of two pieces cut from one rope (RopeObject::cut), and ropes with selfContact off. The contact points become interaction knots ([A] §4), so the rope refines where
+// it presses on itself.
+// Not API: installed only because rope_world.h holds the solver; it may change in any release.
+
+#include <vector>
+
+#include "bullet_bridge/contact_report.h"
+#include "bullet_bridge/contact/contact_response.h"
+#include "bullet_bridge/friction_combination.h"
+#include "rope/rod/coupled_solve.h"
+
+namespace rope::bullet {
+
+class RopeObject;
+
+// A broadphase pair of rope capsules, ordered: ropeA < ropeB, or capsuleA < capsuleB on one rope.
+struct RopeCapsulePair {
+  int ropeA = 0;     // indices into the ropes given to RopeRopeContacts::solve
+  int capsuleA = 0;
+  int ropeB = 0;
+  int capsuleB = 0;
+};
+
+class RopeRopeContacts {
+ public:
+  // Finds the contacts of the candidate pairs (sorted by the caller for determinism) at the ropes'
+  // state before the step, solves them together with the ropes' trial steps (RopeObject::beginSubstep
+  // left one on every rope whose step succeeded; contacts with a failed rope are skipped) and corrects
+  // the trials. Appends one record per contact found and returns the number of active ones, or -1 if
+  // the coupled solve failed numerically (the ropes then keep their uncoupled trials and every
+  // contact is reported inactive).
+  int solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs, double h,
+            std::vector<RopePairContactRecord>& records);
+  // Replaces the product of the two ropes' coefficients (friction_combination.h); empty: the product.
+  void setFrictionCombiner(RopeFrictionCombiner combiner) { combiner_ = std::move(combiner); }
+
+ private:
+  struct Candidate {
+    int record;          // index into the records
+    int ropeA, ropeB;
+    double sA, sB;
+    double arcA, arcB;   // rest arclength of sA, sB, m
+    double spacing;      // m of rest length: closer candidates are the same contact
+    bool coupled;        // both ropes have a trial (else the contact is only reported)
+    ContactLaw law;
+    double distance;     // m, < 0 overlapping
+    Vec3 normal;         // from B into A
+    Vec3 relativeVelocity;  // w = C'_A(sA) - C'_B(sB) before the step
+    double frictionNormalForce;  // N, < 0: the start-of-step estimate
+    bool active;
+  };
+  std::vector<Candidate> candidates_;
+  std::vector<int> keptByArc_;  // accepted candidates ordered by (ropeA, ropeB, arcA), during the thinning
+  std::vector<PointCoupling> couplings_;
+  std::vector<CouplingLaw> laws_;
+  std::vector<int> coupled_;  // candidate index of each coupling
+  std::vector<Vec3> impulses_;
+  std::vector<Rod*> rods_;
+  std::vector<int> rodIndex_;  // per rope: its rod's index in rods_, -1 without a trial
+  std::vector<std::vector<double>> restArc_;  // per rope: cumulative rest length at each span start
+  struct CapsuleEnd {
+    double arc;    // rest arclength, m
+    double speed;  // m/s before the step
+  };
+  std::vector<std::vector<CapsuleEnd>> ends_;  // per rope: capsule ends (capsule i spans i, i + 1)
+  CoupledSolve solver_;
+  RopeFrictionCombiner combiner_;
+};
+
+}  // namespace rope::bullet

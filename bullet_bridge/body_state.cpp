@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "bullet_bridge/body_state.h"
 
+#include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
+
 #include <cmath>
 
 #include "bullet_bridge/bullet_math.h"
@@ -25,6 +27,15 @@ Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point) {
   const btRigidBody* body = btRigidBody::upcast(&object);
   if (body == nullptr) return Vec3::Zero();
   return toVec(body->getVelocityInLocalPoint(point - body->getCenterOfMassPosition()));
+}
+
+double sweptReach(const btCollisionObject& object, double h) {
+  const btRigidBody* rigid = btRigidBody::upcast(&object);
+  const btBroadphaseProxy* handle = object.getBroadphaseHandle();
+  if (rigid == nullptr || handle == nullptr) return 0.0;
+  const double spin = static_cast<double>(rigid->getAngularVelocity().length());
+  const double extent = 0.5 * static_cast<double>((handle->m_aabbMax - handle->m_aabbMin).length());
+  return h * (static_cast<double>(rigid->getLinearVelocity().length()) + spin * extent);
 }
 
 Eigen::Matrix3d pointInverseMass(const btRigidBody& body, const btVector3& arm) {

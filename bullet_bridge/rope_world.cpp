@@ -320,7 +320,9 @@ void RopeWorld::addFastBodies(double h) {
     btBroadphaseProxy* proxy = body->getBroadphaseHandle();
     if (proxy == nullptr) continue;
     const double reach = sweptReach(*body, h);
-    if (!(reach > static_cast<double>(slack))) continue;  // slow (or NaN: the rope skips it anyway)
+    // A NaN body is the rope's to skip and count (BodyContacts::gather); isfinite first, since an
+    // ordered comparison with NaN raises FE_INVALID.
+    if (!std::isfinite(reach) || !(reach > static_cast<double>(slack))) continue;  // slow
     const btScalar grow = static_cast<btScalar>(reach);
     fastBodyRopes_.clear();
     broadphase->aabbTest(proxy->m_aabbMin - btVector3(grow, grow, grow), proxy->m_aabbMax + btVector3(grow, grow, grow),

@@ -712,8 +712,8 @@ double Rod::trialEnergy() const {
 bool Rod::needsRelinearisation() const {
   // Corrected when the energy the linearisation made is more than 1 % of the energy in play: the
   // trial's kinetic energy, the start's stretching energy and m |g| L (and above 1e-12 EA L, strain
-  // round-off). A rope at rest or swinging at ordinary stiffness stays far below (1e-4 of m g L for
-  // the default rope swinging at 4 m/s): its step is unchanged. A stiff thin rope (E = 1e13 Pa,
+  // round-off). A rope of ordinary stiffness stays far below (the default 1 m rope released
+  // horizontally: at most 1.2e-4 of m g L per step): its step is unchanged. A stiff thin rope (E = 1e13 Pa,
   // r = 0.5 mm) starting to swing at 1/60 s made 2.6e-4 J, 3 % of m g L, in its first step.
   // Not while a body touches the rope (contact samples queued, addSpringSample): measured on a rope
   // wound ten times round a spinning drum (reliability_extremes_test), corrected steps threw it at

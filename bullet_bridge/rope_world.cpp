@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <tuple>
 
+#include "bullet_bridge/detail/body_state.h"
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/detail/guarded_call.h"
 #include "bullet_bridge/rope_debug_draw.h"
@@ -138,7 +139,7 @@ void RopeWorld::substep(double h) {
     skipSubstep(h);
     return;
   }
-  findCandidates();
+  findCandidates(h);
   startReport(h);
   // Body attachments per body over all ropes (seriesWithBody shares the body among them).
   bodyAttachmentCounts_.clear();
@@ -222,7 +223,7 @@ void RopeWorld::skipSubstep(double h) {
   runCallback();
 }
 
-void RopeWorld::findCandidates() {
+void RopeWorld::findCandidates(double h) {
   // The ropes' pairs Bullet's dispatch made (rope_dispatch.h): a rope and a body, or two ropes. Bullet
   // drops pairs whose boxes parted lazily, so the overlap is checked again.
   const auto scanStart = std::chrono::steady_clock::now();
@@ -248,6 +249,7 @@ void RopeWorld::findCandidates() {
     if (rope == nullptr || !body->hasContactResponse() || !inThisWorld(rope)) return;
     candidates_[static_cast<std::size_t>(rope->worldIndex_)].push_back(body);
   });
+  addFastBodies(h);
   // Rope-rope and self-contact candidates (rope_rope_contact.h): capsule pairs whose tree leaves
   // (swept boxes) overlap.
   for (const auto& pair : ropeRopePairs_) collideTrees(*pair.first, *pair.second);
@@ -283,6 +285,59 @@ void RopeWorld::collideTrees(const RopeObject& a, const RopeObject& b) {
   collector.rope1 = second.worldIndex_;
   collector.self = &first == &second;
   scratchTree_.collideTTpersistentStack(first.proxies().tree().m_root, second.proxies().tree().m_root, collector);
+}
+
+void RopeWorld::addFastBodies(double h) {
+  // The ropes act after Bullet has integrated the bodies (updateActions), on pairs whose boxes Bullet
+  // made before that integration: a body's box spans its motion over the substep just integrated
+  // (btCollisionWorld::updateSingleAabb: from where it was to where it was predicted to be) plus
+  // gContactBreakingThreshold, and not the motion it will make before the ropes look again. A body
+  // that moves further than that slack per substep (a 50 m/s box at 1/240 s: 0.21 m against 0.02 m)
+  // can be on the far side of a rope by the time the rope first sees it, and the penalty contact
+  // then throws the rope (reliability_extremes_test). Such bodies are paired here with every rope
+  // their box, grown by what they can cover in the substep (sweptReach), meets in the broadphase, so
+  // that the speculative contact catches them before they penetrate. One pass over the world's
+  // objects per substep; a slow body is never added, which leaves slow scenes as they were.
+  const btScalar slack = gContactBreakingThreshold;
+  btBroadphaseInterface* broadphase = world_.getBroadphase();
+  btOverlappingPairCache* pairCache = broadphase->getOverlappingPairCache();
+  btDispatcher* dispatcher = world_.getDispatcher();
+  struct RopesMet : btBroadphaseAabbCallback {
+    std::vector<btBroadphaseProxy*>* found = nullptr;
+    bool process(const btBroadphaseProxy* proxy) override {
+      const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+      if (object != nullptr && CapsuleProxies::ropeOf(*object) != nullptr) {
+        found->push_back(const_cast<btBroadphaseProxy*>(proxy));
+      }
+      return true;
+    }
+  } ropesMet;
+  ropesMet.found = &fastBodyRopes_;
+  const btCollisionObjectArray& objects = world_.getCollisionObjectArray();
+  for (int i = 0; i < objects.size(); ++i) {
+    btCollisionObject* body = objects[i];
+    if (btRigidBody::upcast(body) == nullptr || !body->hasContactResponse()) continue;
+    btBroadphaseProxy* proxy = body->getBroadphaseHandle();
+    if (proxy == nullptr) continue;
+    const double reach = sweptReach(*body, h);
+    // A NaN body is the rope's to skip and count (BodyContacts::gather); isfinite first, since an
+    // ordered comparison with NaN raises FE_INVALID.
+    if (!std::isfinite(reach) || !(reach > static_cast<double>(slack))) continue;  // slow
+    const btScalar grow = static_cast<btScalar>(reach);
+    fastBodyRopes_.clear();
+    broadphase->aabbTest(proxy->m_aabbMin - btVector3(grow, grow, grow), proxy->m_aabbMax + btVector3(grow, grow, grow),
+                         ropesMet);
+    for (btBroadphaseProxy* ropeProxy : fastBodyRopes_) {
+      // Bullet's own filters, as for a pair it made: collision groups and masks (or the user's filter
+      // callback), then the dispatcher's test (ignored pairs, two sleeping objects).
+      if (pairCache != nullptr && !pairCache->needsBroadphaseCollision(proxy, ropeProxy)) continue;
+      const auto* ropeObject = static_cast<const btCollisionObject*>(ropeProxy->m_clientObject);
+      if (dispatcher != nullptr && !dispatcher->needsCollision(body, ropeObject)) continue;
+      RopeObject* rope = CapsuleProxies::ropeOf(*ropeObject);
+      if (rope->world_ != this || rope->worldIndex_ < 0) continue;
+      candidates_[static_cast<std::size_t>(rope->worldIndex_)].push_back(body);
+    }
+  }
 }
 
 void RopeWorld::solveRopeContacts(double h) {

@@ -109,7 +109,10 @@ class RopeWorld {
   // The parts of substep(); each rope's own failures are caught around its calls.
   void startReport(double h);
   void skipSubstep(double h);
-  void findCandidates();
+  void findCandidates(double h);
+  // Adds to candidates_ the bodies that can cross more than Bullet's broadphase slack in the substep
+  // (rope_world.cpp says why), each for the ropes its swept box meets.
+  void addFastBodies(double h);
   void solveRopeContacts(double h);
   void runCallback();
   void failRopeContacts(const char* message);
@@ -126,6 +129,7 @@ class RopeWorld {
   std::vector<std::pair<RopeObject*, RopeObject*>> ropeRopePairs_;  // scratch
   std::vector<RopeObject*> ropes_;
   std::vector<std::vector<const btCollisionObject*>> candidates_;  // per rope, scratch
+  std::vector<btBroadphaseProxy*> fastBodyRopes_;                   // scratch of addFastBodies
   std::vector<std::pair<const btRigidBody*, int>> bodyAttachmentCounts_;  // per substep, sorted by body
   std::vector<RopeCapsulePair> capsulePairs_;                       // scratch
   std::vector<RopeCapsulePair> sortedPairs_;                        // scratch of sortCapsulePairs

@@ -106,15 +106,10 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
   const double margin = settings.speculativeMargin;
   const double radius = rod.settings().radius;
   // How far the body's surface can move in the step: linear speed plus spin times its box's reach.
-  double bodyReach = 0.0;
-  if (const btRigidBody* rigid = btRigidBody::upcast(&object)) {
-    const double spin = static_cast<double>(rigid->getAngularVelocity().length());
-    const double extent = 0.5 * static_cast<double>((handle->m_aabbMax - handle->m_aabbMin).length());
-    bodyReach = h * (static_cast<double>(rigid->getLinearVelocity().length()) + spin * extent);
-    if (!std::isfinite(bodyReach)) {
-      ++step.skippedBodies;
-      return;
-    }
+  const double bodyReach = sweptReach(object, h);
+  if (!std::isfinite(bodyReach)) {
+    ++step.skippedBodies;
+    return;
   }
   btRigidBody* body = dynamicBody(object);
   const std::size_t first = samples_.size();

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "bullet_bridge/detail/body_state.h"
 
+#include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
+
 #include <cmath>
 
 #include "bullet_bridge/detail/bullet_math.h"
@@ -30,6 +32,15 @@ Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point) {
 Vec3 pointAccelerationFromForces(const btRigidBody& body, const btVector3& arm) {
   const btVector3 angular = body.getInvInertiaTensorWorld() * body.getTotalTorque();
   return toVec(body.getTotalForce() * body.getInvMass() + angular.cross(arm));
+}
+
+double sweptReach(const btCollisionObject& object, double h) {
+  const btRigidBody* rigid = btRigidBody::upcast(&object);
+  const btBroadphaseProxy* handle = object.getBroadphaseHandle();
+  if (rigid == nullptr || handle == nullptr) return 0.0;
+  const double spin = static_cast<double>(rigid->getAngularVelocity().length());
+  const double extent = 0.5 * static_cast<double>((handle->m_aabbMax - handle->m_aabbMin).length());
+  return h * (static_cast<double>(rigid->getLinearVelocity().length()) + spin * extent);
 }
 
 Eigen::Matrix3d pointInverseMass(const btRigidBody& body, const btVector3& arm) {

@@ -33,6 +33,11 @@ Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point);
 // hanging load's fall under gravity, which the rope's own impulse cancels, for stretch.
 Vec3 pointAccelerationFromForces(const btRigidBody& body, const btVector3& arm);
 
+// How far any point of the object's surface can move in h seconds at its current velocity, m: h (|v| +
+// |omega| e), e half the diagonal of its broadphase box. 0 for an object that is not a rigid body or
+// has no broadphase handle; not finite for a body with a non-finite velocity.
+double sweptReach(const btCollisionObject& object, double h);
+
 // The inverse-mass matrix of a dynamic body's material point at `arm` from its centre of mass (world
 // frame), m/(N s^2): an impulse J there changes the point's velocity by W J, W = I/m - [r]x I^-1 [r]x
 // (symmetric positive semidefinite; symmetrised against the round-off of Bullet's world inertia).

@@ -343,7 +343,15 @@ class Rod {
   void requireIndependentPin(double s) const;
   void requireResolvableKnot(double s) const;
   double restDistance(double a, double b) const;  // rest arc length between two parameters, m
-  bool assembleAndSolve(double h, StepReport& report);
+  // One linearised step. `about` (end-of-step control points of an earlier pass, or null for the
+  // start of the step) is where the stretching force is linearised (rod.cpp: relinearise).
+  bool assembleAndSolve(double h, StepReport& report, const PointList* about = nullptr);
+  // The stretching energy the last pass's trial holds beyond the quadratic model it was solved with,
+  // J (rod.cpp); and whether it is large enough to solve the step again about the trial.
+  double linearisationExcess() const;
+  bool needsRelinearisation() const;
+  // Kinetic, stretching, bending and gravitational energy of the trial (newPoints_, newVelocities_), J.
+  double trialEnergy() const;
   // The weight c of the internal forces in this step (method eq. 22a): 4/9 for a BDF2 step with
   // history of the same h, 1 for backward Euler and for BDF2's restart step.
   double internalWeight(double h) const;
@@ -397,6 +405,8 @@ class Rod {
   int historySteps_ = 0;
   double historyStep_ = 0.0;
   PointList newPoints_, newVelocities_;
+  double stretchingEnergy_ = 0.0;  // J, at the last pass's linearisation point
+  PointList relinearisationPoints_, stretchScratch_;
   std::vector<double> bend_;
   std::vector<int> spans_;
   std::vector<double> interactions_;

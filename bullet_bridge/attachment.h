@@ -45,11 +45,11 @@ struct Attachment {
   int pinId = 0;                      // the rod pin of a point attachment
   btVector3 lastForce{0, 0, 0};       // force on the rope in the last substep, N (body attachments)
   btVector3 lastMoment{0, 0, 0};      // clamps: moment on the rope in the last substep, N m
-  int bodyIndexHint = -1;             // where the body was last seen in its world's object array (world_membership.h)
+  int bodyIndexHint = -1;             // where the body was last seen in its world's object array (detail/world_membership.h)
 };
 
 // The rope side of a body attachment: f = -k (x_new - p_new) - c (u_new - v_p) with the body point
-// predicted to move on at v_p (p_new = p + h v_p), in Rod::addSpring's form (see contact_response.h).
+// predicted to move on at v_p (p_new = p + h v_p), in Rod::addSpring's form (see contact/contact_response.h).
 ContactSpring attachmentSpring(double stiffness, double damping, const Vec3& ropePoint, const Vec3& bodyPoint,
                                const Vec3& ropeVelocity, const Vec3& bodyVelocity, double h);
 

@@ -29,7 +29,7 @@ struct RopeContactRecord {
 
 // One contact between two ropes, or between two parts of one rope (self-contact): capsules whose axes
 // came closer than the sum of the radii (plus the speculative margin), coupled implicitly in the
-// ropes' step (rope_rope_contact.h).
+// ropes' step (contact/rope_rope_contact.h).
 struct RopePairContactRecord {
   const RopeObject* ropeA = nullptr;
   const RopeObject* ropeB = nullptr;  // == ropeA for self-contact
@@ -67,7 +67,7 @@ struct RopeStepRecord {
   int controlPoints = 0;         // after the step's adaptivity
   int insertions = 0;            // knots inserted by the step's adaptivity
   int removals = 0;              // knots removed by the step's adaptivity
-  int solvePasses = 0;           // rod solves in the substep (contact active set, contact_response.h)
+  int solvePasses = 0;           // rod solves in the substep (contact active set, contact/contact_response.h)
   int ropeContacts = 0;          // active rope-rope and self-contacts this rope takes part in
   double maxSelfOverlap = 0.0;   // m, deepest overlap with itself or another rope at the start of the substep
   // Wall-clock time of the rope's parts of the substep, s (profiling only; not deterministic).

@@ -3,8 +3,8 @@
 // Narrowphase entry point: contacts between a rope capsule and one Bullet collision object.
 //
 // Supported shapes: btSphereShape, btCapsuleShape{,X,Z}, btBoxShape, btCylinderShape{,X,Z},
-// btConeShape{,X,Z}, btConvexHullShape (convex_contact.h: at most one contact), btStaticPlaneShape
-// and every other btConcaveShape except btSdfCollisionShape (concave_contact.h: up to two plane
+// btConeShape{,X,Z}, btConvexHullShape (narrowphase/convex_contact.h: at most one contact), btStaticPlaneShape
+// and every other btConcaveShape except btSdfCollisionShape (narrowphase/concave_contact.h: up to two plane
 // contacts, one per triangle),
 // and btCompoundShape of any of these, nested to any depth (children placed by their local
 // transforms; Contact::childIndex is the index in the object's top-level compound).

@@ -17,7 +17,7 @@
 // (their userIndex2 is kKinematicRopeTag, not the dynamic ropes' tag). After moving, the rope finds
 // the dynamic bodies overlapping its capsules through the broadphase, measures contacts with the
 // bridge's narrowphase (find_contacts.h) and pushes each body by one-way contact impulses, all
-// contacts of a body solved together (kinematic_push.h). Nothing acts on the rope: static and kinematic objects, the body it follows,
+// contacts of a body solved together (contact/kinematic_push.h). Nothing acts on the rope: static and kinematic objects, the body it follows,
 // and other ropes (dynamic or kinematic) are passed through.
 //
 // Bullet's debugDrawWorld() draws the rope's centre line (the capsule axes) through btIDebugDraw.
@@ -168,7 +168,7 @@ class KinematicRope {
   Driver driver_ = Driver::kHold;
   Vec3 target_ = Vec3::Zero();
   btRigidBody* body_ = nullptr;
-  int bodyIndexHint_ = -1;  // where body_ was last seen in the world's object array (world_membership.h)
+  int bodyIndexHint_ = -1;  // where body_ was last seen in the world's object array (detail/world_membership.h)
   btVector3 localPoint_{0, 0, 0};
   std::function<btVector3(double)> path_;
   double time_ = 0.0;

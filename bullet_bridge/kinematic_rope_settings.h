@@ -5,7 +5,7 @@
 // own kinematics (variant, thresholds, segment count) stay in rope::TractrixSettings.
 //
 // The rope is kinematic: it moves only by its leading end and nothing pushes it back. A dynamic
-// body it overlaps gets a one-way contact impulse (kinematic_push.h) that gives the body, at the
+// body it overlaps gets a one-way contact impulse (contact/kinematic_push.h) that gives the body, at the
 // contact point, at least the rope's normal velocity there, plus a separating speed proportional
 // to the penetration; the impulse is the body's own effective mass times a velocity change, so it
 // is stable for any body mass (a penalty spring on an explicit body would need a stiffness cap).

@@ -308,7 +308,7 @@ void RopeObject::queueClampTangent(const Attachment& attachment, btRigidBody& bo
 }
 
 StepReport RopeObject::solveTrialWithContacts(double h) {
-  // Unilateral contact and Coulomb friction by a small active set (body_contacts.h: update): samples
+  // Unilateral contact and Coulomb friction by a small active set (contact/body_contacts.h: update): samples
   // that come out pulling are released, sticking samples that need more than mu f_n slide, and the
   // trial step is solved again, at most kMaxSolvePasses times. The rod itself does not change until
   // endSubstep commits the last trial.
@@ -337,7 +337,7 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
   requirePositive("h", h);
   runWinches(h);  // winch.h: the ends move before anything reads the rope
   if (settings_.fluidDensity > 0.0) {
-    // Drag at the state the substep starts from (distributed_loads.h), queued with the user's loads.
+    // Drag at the state the substep starts from (contact/distributed_loads.h), queued with the user's loads.
     const double diameter = 2.0 * rod_.settings().radius;
     DragLaw drag;
     drag.normal = 0.5 * settings_.fluidDensity * diameter * settings_.normalDragCoefficient;

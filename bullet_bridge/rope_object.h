@@ -94,7 +94,7 @@ class RopeObject {
   void applyImpulse(double s, const btVector3& impulse);
   // A force per metre of rope (N/m of rest length, world frame) over [s0, s1], acting in the next
   // substep only like applyForce: integrated along the rope by Gauss-Legendre into the consistent
-  // generalised forces (distributed_loads.h), so a uniform q over the whole rope moves its centre of
+  // generalised forces (contact/distributed_loads.h), so a uniform q over the whole rope moves its centre of
   // mass exactly like a force q * restLength. Throws InvalidArgument naming "s0" / "s1" (NaN, outside
   // the rope, s1 <= s0) or "forcePerLength[i]" (not finite) and queues nothing.
   void applyDistributedForce(double s0, double s1, const btVector3& forcePerLength);
@@ -154,7 +154,7 @@ class RopeObject {
 
   // ---- last substep ----
   // Rope-body contacts of the last substep: one record per quadrature sample of the line contact
-  // (body_contacts.h), its force the sample's share of the pressure over the substep.
+  // (contact/body_contacts.h), its force the sample's share of the pressure over the substep.
   const std::vector<RopeContactRecord>& contacts() const { return contacts_; }
   const RopeStepRecord& lastStep() const { return lastStep_; }
   // What went wrong in this rope's substeps since it was created (rope_warnings.h; a RopeWorld counts
@@ -167,7 +167,7 @@ class RopeObject {
   // rope to rest: its velocities are set to zero and it no longer steps, so a rope that cannot be
   // solved (settings far outside their range, an impossible constraint) costs no more solves and
   // cannot go wrong, while the world goes on. It stays in the world as a fixed obstacle: bodies still
-  // collide with it (one-way contact, as against a kinematic rope: kinematic_push.h), its capsules
+  // collide with it (one-way contact, as against a kinematic rope: contact/kinematic_push.h), its capsules
   // stay in the broadphase for queries, and other ropes see it as they see a rope whose step failed.
   // Each resting substep reports lastStep().ok == false, lastStep().resting == true and the failure
   // text below, and counts warnings().restingSubsteps; warnings().timesPutToRest counts the events.
@@ -231,7 +231,7 @@ class RopeObject {
   void queueAttachments(double h);
   // A clamp's rotational spring (attachment.h), capped on a light body.
   void queueClampTangent(const Attachment& attachment, btRigidBody& body, int index, double h);
-  // The rod's trial step with the attachments and the body contacts' active set (body_contacts.h).
+  // The rod's trial step with the attachments and the body contacts' active set (contact/body_contacts.h).
   StepReport solveTrialWithContacts(double h);
   // Whether the rope is attached to object within 4 radii of the capsule [s0, s1]: the rope's end sits
   // in the body's surface there, so those contacts are ignored.

@@ -13,7 +13,7 @@
 namespace rope::bullet {
 
 struct BulletRopeSettings {
-  // ---- rope-body contact: a pressure along the touching stretch of the curve (line_contact.h) ----
+  // ---- rope-body contact: a pressure along the touching stretch of the curve (contact/line_contact.h) ----
   // The rope presses on a body with a line load p = k (-gap) - c (normal approach speed) per metre of
   // rope, integrated along every touching stretch by Gauss-Legendre quadrature into the consistent
   // generalised force sum_q w_q b_i(s_q) p(s_q) and its stiffness into the rope's implicit step
@@ -69,7 +69,7 @@ struct BulletRopeSettings {
   GravitySource gravitySource = GravitySource::kWorld;
   double gravityScale = 1.0;  // finite, any sign; used with kWorld
 
-  // ---- aerodynamic drag (distributed_loads.cpp; docs/method.md §15) ----
+  // ---- aerodynamic drag (contact/distributed_loads.cpp; docs/method.md §15) ----
   // A quadratic (Morison) drag per metre of rope against the fluid moving at windVelocity: with w the
   // rope's velocity relative to the fluid, split into the parts normal (w_n) and along (w_t) the
   // rope, q = -(1/2) rho d (C_n |w_n| w_n + pi C_t |w_t| w_t) newtons per metre (d = 2 radius: C_n on
@@ -85,7 +85,7 @@ struct BulletRopeSettings {
   // Velocity of the fluid, m/s, world frame, finite (wind, a current).
   btVector3 windVelocity{0, 0, 0};
 
-  // ---- rope-rope and self-contact: point contacts (rope_rope_contact.h) ----
+  // ---- rope-rope and self-contact: point contacts (contact/rope_rope_contact.h) ----
   // Penalty stiffness of one contact point, N/m, > 0; its damping along the normal, N s/m, >= 0; and
   // the speculative damper of a closing contact, N s/m, >= 0 (see lineSpeculativeDamping). Two ropes
   // use the smaller value of each of the two ropes'.
@@ -114,7 +114,7 @@ struct BulletRopeSettings {
   int collisionGroup = 1 << 10;
   int collisionMask = -1;
 
-  // ---- rope-rope and self-contact (rope_rope_contact.h) ----
+  // ---- rope-rope and self-contact (contact/rope_rope_contact.h) ----
   // Whether the rope collides with itself. Rope-rope contact between two ropes is governed by the
   // broadphase filter above. The contact law is contactStiffness, contactDamping, speculativeDamping,
   // friction and frictionVelocity above.

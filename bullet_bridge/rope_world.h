@@ -5,11 +5,11 @@
 // Bullet internal substep with Bullet's fixed step, right after that substep's collision detection,
 // constraint solve and integration (stepSimulation(dt, maxSubSteps, fixedStep) works unchanged).
 // Each rope is one collision object in the Bullet world (capsule_proxies.h): Bullet's broadphase sees
-// one box per rope and its dispatcher hands each of the rope's pairs to the RopeWorld (rope_dispatch.h,
+// one box per rope and its dispatcher hands each of the rope's pairs to the RopeWorld (collision_object/rope_dispatch.h,
 // which the RopeWorld installs on the world's btCollisionDispatcher). In each substep the RopeWorld
 // reads those pairs (re-checking the overlap: Bullet drops pairs lazily), finds the capsules involved in the ropes' trees (rope against a body's box, tree
 // against tree for rope-rope and self-contact), runs the bridge's narrowphase, applies the contact
-// and attachment response (contact_response.h, attachment.h), steps the rods and refits the trees
+// and attachment response (contact/contact_response.h, attachment.h), steps the rods and refits the trees
 // for the next substep. Bullet's own queries (rayTest, contactTest, contactPairTest,
 // convexSweepTest) see the ropes' capsules; rope_queries.h maps a hit to the rope and its s.
 //
@@ -58,7 +58,7 @@ class RopeWorld {
   friend class RopePairAlgorithm;  // lists the rope pairs Bullet's dispatch made
  public:
   // Throws InvalidArgument("world", ...) if the world's dispatcher is not a btCollisionDispatcher or
-  // the world has a RopeWorld already (rope_dispatch.h).
+  // the world has a RopeWorld already (collision_object/rope_dispatch.h).
   explicit RopeWorld(btDiscreteDynamicsWorld& world);
   ~RopeWorld();
   RopeWorld(const RopeWorld&) = delete;
@@ -123,7 +123,7 @@ class RopeWorld {
 
   btDiscreteDynamicsWorld& world_;
   std::unique_ptr<RopeDispatch> dispatch_;
-  RopePairs ropePairs_;  // filled by Bullet's dispatch (rope_dispatch.h)
+  RopePairs ropePairs_;  // filled by Bullet's dispatch (collision_object/rope_dispatch.h)
   std::unique_ptr<Action> action_;
   btDbvt scratchTree_;  // its traversal stack serves the tree-tree tests
   std::vector<std::pair<RopeObject*, RopeObject*>> ropeRopePairs_;  // scratch

@@ -3,7 +3,7 @@
 // Contact between ropes and of a rope with itself ([A] §5.2 knot tying needs the rope to stay out of
 // itself). Candidates are the pairs of rope capsules that Bullet's broadphase reports (RopeWorld
 // reads them from the pair cache with the rope-body pairs). For each pair the capsule axes' closest
-// points (segment_segment_distance.h) give curve parameters sA, sB; the contact is evaluated on the
+// points (narrowphase/segment_segment_distance.h) give curve parameters sA, sB; the contact is evaluated on the
 // curve itself, d = |C_A(sA) - C_B(sB)| - (r_A + r_B), n = (C_A - C_B)/|C_A - C_B|.
 //
 // Response: the same penalty law with damping, speculative approach and regularised Coulomb friction

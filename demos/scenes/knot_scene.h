@@ -8,7 +8,7 @@
 //             each moves at a speed proportional to how far the strain at its end is below
 //             pullTension / EA (backing off above it), so the knot is drawn tight and then held at
 //             that tension (a robot pulling with force control).
-// Self-contact (rope_rope_contact.h) keeps the rope out of itself; its contact points get knots, so
+// Self-contact (contact/rope_rope_contact.h) keeps the rope out of itself; its contact points get knots, so
 // the knot vector ends up dense in the knot and sparse along the tails.
 
 #include <memory>

@@ -3,7 +3,7 @@
 // "pile": a long rope dropped onto the ground piles up into a heap. It starts as a loose vertical coil
 // (a helix whose turns are several diameters apart, tilted so that the turns land unevenly) above a
 // ground plane, falls, and its turns collapse onto each other: many simultaneous self-contacts and
-// ground contacts, the stress case for rope-rope contact (rope_rope_contact.h).
+// ground contacts, the stress case for rope-rope contact (contact/rope_rope_contact.h).
 
 #include <memory>
 

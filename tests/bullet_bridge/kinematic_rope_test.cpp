@@ -416,7 +416,7 @@ TEST(KinematicRope, RopeHoldsABoxAgainstGravity) {
   // A kinematic rope pushes every substep, so it can also carry a load: the box comes to rest on the
   // rope's two legs without sinking, jittering or creeping. Resting: bottom face on the ropes' tops
   // (y = 0.01 + 0.05 plus the speculative approach), and still over the second second. Between steps
-  // its velocity is the +g h that the next substep's gravity cancels (kinematic_push.h).
+  // its velocity is the +g h that the next substep's gravity cancels (contact/kinematic_push.h).
   const RestingRun one = restOnRopes(true);
   EXPECT_NEAR(one.height, 0.06, 1e-3);
   EXPECT_LT(one.deepest, 1e-3);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The rope as one Bullet collision object (capsule_proxies.h, rope_dispatch.h): Bullet's own
+// The rope as one Bullet collision object (capsule_proxies.h, collision_object/rope_dispatch.h): Bullet's own
 // rayTest, convexSweepTest and contactTest hit the rope's capsules at the analytic surface and
 // ropeHit gives s; group/mask filtering per rope; one object per rope, and adding and removing ropes
 // leaves Bullet's object count and pair cache as they were; bad input is refused.

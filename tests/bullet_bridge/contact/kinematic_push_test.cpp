@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The one-way contact impulse of a kinematic rope on a body (kinematic_push.h): after it the relative
+// The one-way contact impulse of a kinematic rope on a body (contact/kinematic_push.h): after it the relative
 // normal speed is exactly the target speed, it never pulls, friction stays within mu * j_n.
 #include "bullet_bridge/contact/kinematic_push.h"
 

@@ -8,9 +8,11 @@
 #include <cmath>
 #include <string>
 
+#include "bullet_bridge/kinematic_rope.h"
 #include "bullet_bridge/narrowphase/concave_contact.h"
 #include "bullet_bridge/narrowphase/convex_contact.h"
 #include "bullet_bridge/narrowphase/convex_support.h"
+#include "bullet_bridge/narrowphase/segment_segment_distance.h"
 #include "rope/common/error.h"
 
 namespace rope::bullet {
@@ -70,6 +72,34 @@ void appendContacts(const Capsule& capsule, const btCollisionShape& shape,
   for (std::size_t i = first; i < out.size(); ++i) out[i].childIndex = childIndex;
 }
 
+// The capsule against another capsule (a kinematic rope's): closest points of the two axes.
+void capsuleContact(const Capsule& capsule, const Capsule& other, btScalar margin, std::vector<Contact>& out) {
+  const SegmentPairClosest closest = segmentSegmentClosest(capsule.a, capsule.b, other.a, other.b);
+  const btScalar distance = static_cast<btScalar>(closest.distance) - capsule.radius - other.radius;
+  if (distance > margin) return;
+  const btVector3 onAxis = capsule.a + (capsule.b - capsule.a) * static_cast<btScalar>(closest.s);
+  const btVector3 onOther = other.a + (other.b - other.a) * static_cast<btScalar>(closest.t);
+  btVector3 normal = onAxis - onOther;
+  if (normal.length2() > btScalar(1e-24)) {
+    normal.normalize();
+  } else {
+    // The axes meet: separate across both (or any direction normal to the capsule's).
+    normal = (capsule.b - capsule.a).cross(other.b - other.a);
+    if (normal.length2() < btScalar(1e-24)) {
+      btVector3 unused;
+      btPlaneSpace1(capsule.b - capsule.a, normal, unused);
+    }
+    normal.normalize();
+  }
+  Contact contact;
+  contact.t = static_cast<btScalar>(closest.s);
+  contact.normal = normal;
+  contact.pointOnCapsule = onAxis - normal * capsule.radius;
+  contact.pointOnBody = onOther + normal * other.radius;
+  contact.distance = distance;
+  out.push_back(contact);
+}
+
 }  // namespace
 
 void findContacts(const Capsule& capsule, const btCollisionObject& object, double margin,
@@ -79,6 +109,12 @@ void findContacts(const Capsule& capsule, const btCollisionObject& object, doubl
   const btCollisionShape* shape = object.getCollisionShape();
   if (shape == nullptr) {
     throw InvalidArgument("object.shape", "null", "the collision object has no shape");
+  }
+  if (const KinematicRope* rope = KinematicRope::ropeOf(object)) {
+    if (object.getUserIndex() >= 0 && object.getUserIndex() < rope->capsuleCount()) {
+      capsuleContact(capsule, rope->capsule(object.getUserIndex()), btScalar(margin), out);
+    }
+    return;
   }
   requireSupported(*shape);
   appendContacts(capsule, *shape, object.getWorldTransform(), btScalar(margin), -1, out);

@@ -7,7 +7,8 @@
 // and every other btConcaveShape except btSdfCollisionShape (narrowphase/concave_contact.h: up to two plane
 // contacts, one per triangle),
 // and btCompoundShape of any of these, nested to any depth (children placed by their local
-// transforms; Contact::childIndex is the index in the object's top-level compound).
+// transforms; Contact::childIndex is the index in the object's top-level compound). A kinematic
+// rope's capsule object (KinematicRope::capsuleObject) is its capsule: closest points of the two axes.
 
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 

@@ -188,6 +188,19 @@ const btCollisionObject& KinematicRope::capsuleObject(int i) const {
   return *objects_[static_cast<std::size_t>(i)];
 }
 
+btVector3 KinematicRope::surfaceVelocity(int i, const btVector3& point) const {
+  const Capsule axis = capsule(i);  // checks i
+  const double h = moveStep_;
+  if (h == 0.0) return btVector3(0, 0, 0);
+  const btVector3 along = axis.b - axis.a;
+  const btScalar length2 = along.length2();
+  const btScalar t = length2 > 0 ? btClamped((point - axis.a).dot(along) / length2, btScalar(0), btScalar(1)) : btScalar(0);
+  const std::size_t k = static_cast<std::size_t>(i);
+  const btVector3 velocityA = (axis_[k] - previousAxis_[k]) / static_cast<btScalar>(h);
+  const btVector3 velocityB = (axis_[k + 1] - previousAxis_[k + 1]) / static_cast<btScalar>(h);
+  return velocityA + (velocityB - velocityA) * t;
+}
+
 KinematicRope* KinematicRope::ropeOf(const btCollisionObject& object) {
   if (object.getUserIndex2() != kKinematicRopeTag) return nullptr;
   return static_cast<KinematicRope*>(object.getUserPointer());
@@ -244,6 +257,7 @@ void KinematicRope::substep(double h) {
   if (!(std::isfinite(h) && h > 0.0)) {
     report_.failure = "the substep's time step is not finite and > 0: the rope did not move";
     ++warnings_.skippedSubsteps;
+    moveStep_ = 0.0;
     return;
   }
   time_ += h;
@@ -260,6 +274,7 @@ void KinematicRope::recoverFromException(const char* message) noexcept {
     // out of memory for the message: the count is what matters
   }
   report_.failure = "an exception was thrown in the rope's substep (KinematicRope::lastError())";
+  moveStep_ = 0.0;
 }
 
 void KinematicRope::moveAndPush(double h) {
@@ -271,6 +286,7 @@ void KinematicRope::moveAndPush(double h) {
   if (driverTarget(target) && target != rope_.leadingEnd()) rope_.moveLeadingEnd(target);
 
   rebuildCapsules(true);
+  moveStep_ = h;
   if (world_ == nullptr) return;
   findCandidates();
   push(h);

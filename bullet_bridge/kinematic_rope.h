@@ -17,8 +17,15 @@
 // (their userIndex2 is kKinematicRopeTag, not the dynamic ropes' tag). After moving, the rope finds
 // the dynamic bodies overlapping its capsules through the broadphase, measures contacts with the
 // bridge's narrowphase (find_contacts.h) and pushes each body by one-way contact impulses, all
-// contacts of a body solved together (contact/kinematic_push.h). Nothing acts on the rope: static and kinematic objects, the body it follows,
-// and other ropes (dynamic or kinematic) are passed through.
+// contacts of a body solved together (contact/kinematic_push.h). Nothing acts on the rope: static and
+// kinematic objects, the body it follows and other kinematic ropes are passed through.
+//
+// Dynamic ropes (RopeObject in a RopeWorld of the same world) are pushed one way too: their RopeWorld
+// takes the capsules as moving bodies (find_contacts.h: capsule against capsule; the surface moves at
+// surfaceVelocity), so a dynamic rope gets the same line contact, stick and Coulomb friction as against
+// any kinematic body (friction: the rope's coefficient times the capsule objects' Bullet default 0.5,
+// friction_combination.h), and the kinematic rope feels nothing. The pair obeys both ropes'
+// collision group and mask, as any Bullet pair.
 //
 // Bullet's debugDrawWorld() draws the rope's centre line (the capsule axes) through btIDebugDraw.
 //
@@ -140,6 +147,10 @@ class KinematicRope {
   const btCollisionObject& capsuleObject(int i) const;       // "i" out of range
   // The kinematic rope a collision object stands in for, or nullptr.
   static KinematicRope* ropeOf(const btCollisionObject& object);
+  // Velocity (m/s) of the rope's surface at `point` near capsule i over the last substep: the capsule's
+  // end points' motion over that substep, interpolated at the point's projection on the axis. Zero
+  // before the first substep and after one that did not move the rope (skipped, or failed). What a dynamic rope touching this rope sees as the other side's velocity.
+  btVector3 surfaceVelocity(int i, const btVector3& point) const;  // "i" out of range
 
  private:
   class Action;
@@ -172,6 +183,7 @@ class KinematicRope {
   btVector3 localPoint_{0, 0, 0};
   std::function<btVector3(double)> path_;
   double time_ = 0.0;
+  double moveStep_ = 0.0;  // s: the last substep's time step if the capsules moved in it, else 0
 
   // The curve before this substep's move, to measure how far each capsule end moved.
   KnotVector previousKnots_;

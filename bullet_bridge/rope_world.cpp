@@ -15,6 +15,7 @@
 #include "bullet_bridge/detail/body_state.h"
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/detail/guarded_call.h"
+#include "bullet_bridge/kinematic_rope.h"
 #include "bullet_bridge/rope_debug_draw.h"
 #include "rope/common/error.h"
 
@@ -245,8 +246,10 @@ void RopeWorld::findCandidates(double h) {
     }
     RopeObject* rope = rope0 != nullptr ? rope0 : rope1;
     const btCollisionObject* body = rope0 != nullptr ? object1 : object0;
-    // Triggers and other objects that want no contact response get none from ropes either.
-    if (rope == nullptr || !body->hasContactResponse() || !inThisWorld(rope)) return;
+    // Triggers and other objects that want no contact response get none from ropes either; a
+    // kinematic rope's capsules want none from Bullet's solver but push dynamic ropes (kinematic_rope.h).
+    if (rope == nullptr || !inThisWorld(rope)) return;
+    if (!body->hasContactResponse() && KinematicRope::ropeOf(*body) == nullptr) return;
     candidates_[static_cast<std::size_t>(rope->worldIndex_)].push_back(body);
   });
   addFastBodies(h);

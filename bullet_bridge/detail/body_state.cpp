@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "bullet_bridge/detail/bullet_math.h"
+#include "bullet_bridge/kinematic_rope.h"
 
 namespace rope::bullet {
 
@@ -24,6 +25,10 @@ btRigidBody* dynamicBody(const btCollisionObject& object) {
 }
 
 Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point) {
+  if (const KinematicRope* rope = KinematicRope::ropeOf(object)) {
+    const int capsule = object.getUserIndex();
+    return capsule >= 0 && capsule < rope->capsuleCount() ? toVec(rope->surfaceVelocity(capsule, point)) : Vec3::Zero();
+  }
   const btRigidBody* body = btRigidBody::upcast(&object);
   if (body == nullptr) return Vec3::Zero();
   return toVec(body->getVelocityInLocalPoint(point - body->getCenterOfMassPosition()));

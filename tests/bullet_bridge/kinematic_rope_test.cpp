@@ -463,31 +463,109 @@ TEST(KinematicRope, TwinRunsAreBitwiseIdentical) {
   EXPECT_TRUE(bitwiseEqual(a.impulseSum, b.impulseSum));
 }
 
-TEST(KinematicRope, DynamicRopesIgnoreItAndItIgnoresThem) {
-  // A dynamic rope falling across the kinematic one: RopeWorld must not treat the kinematic capsules
-  // as bodies (different tag, no contact response), and the kinematic rope does not push rope capsules.
-  World w(9.81);
-  RopeWorld ropes(w.world);
+// A dynamic cable for the tests below: 0.6 m, radius 1 cm, along x at height y and depth z.
+RodSettings cableSettings() {
   RodSettings rod;
   rod.radius = 0.01;
   rod.youngsModulus = 2.0e8;
   rod.bendingStiffness = 1.0e-3;
   rod.restLength = 0.6;
   rod.maxControlPoints = 32;
-  RopeObject cable(Rod::fromSegment(rod, Vec3(-0.3, 0.05, -0.5), Vec3(0.3, 0.05, -0.5)));
+  return rod;
+}
+
+// Deepest overlap of a dynamic rope's tube with the kinematic rope's capsules, m (0 if apart),
+// sampled at 200 points along the cable's curve.
+double deepestRopeOverlap(const KinematicRope& rope, const RopeObject& cable) {
+  const Rod& rod = cable.rod();
+  const double radii = rod.settings().radius + rope.settings().radius;
+  double deepest = 0.0;
+  for (int k = 0; k <= 200; ++k) {
+    const double s = rod.beginParameter() + (rod.endParameter() - rod.beginParameter()) * k / 200.0;
+    const Vec3 p = rod.position(s);
+    for (int i = 0; i < rope.capsuleCount(); ++i) {
+      const Capsule c = rope.capsule(i);
+      const Vec3 a(c.a.x(), c.a.y(), c.a.z()), b(c.b.x(), c.b.y(), c.b.z());
+      const double t = std::clamp((p - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-300), 0.0, 1.0);
+      deepest = std::max(deepest, radii - (p - (a + t * (b - a))).norm());
+    }
+  }
+  return deepest;
+}
+
+TEST(KinematicRope, DynamicRopeFallingOnItLiesOnItAndDoesNotMoveIt) {
+  // A dynamic cable dropped across the kinematic rope (held still) lands on it and drapes over it:
+  // its RopeWorld takes the kinematic capsules as a body (one-way), the kinematic rope is unmoved.
+  World w(9.81);
+  RopeWorld ropes(w.world);
+  RopeObject cable(Rod::fromSegment(cableSettings(), Vec3(-0.3, 0.05, -0.5), Vec3(0.3, 0.05, -0.5)));
   ropes.addRope(cable);
   KinematicRope rope(straightRope());
   rope.addToWorld(w.world);
-  rope.setTarget(btVector3(0, 0, btScalar(0.01)));
-  for (int i = 0; i < 60; ++i) {
+  const PointList before = rope.tractrix().controlPoints();
+  double deepest = 0.0;
+  int touching = 0;
+  for (int i = 0; i < 240; ++i) {
     w.step(1);
+    deepest = std::max(deepest, deepestRopeOverlap(rope, cable));
+    bool kinematicContact = false;
     for (const RopeContactRecord& contact : ropes.lastReport().contacts) {
-      EXPECT_EQ(KinematicRope::ropeOf(*contact.body), nullptr);
+      kinematicContact = kinematicContact || KinematicRope::ropeOf(*contact.body) == &rope;
     }
+    touching += kinematicContact;
     EXPECT_TRUE(rope.lastStep().contacts.empty());
   }
-  // The dynamic rope fell through (documented limitation: no kinematic-dynamic rope contact).
-  EXPECT_LT(cable.rod().position(0.5 * cable.rod().endParameter()).y(), -0.05);
+  EXPECT_GT(touching, 150);
+  RecordProperty("deepest_overlap_mm", std::to_string(deepest * 1e3));
+  // Lands at 1 m/s at most (0.03 m of fall) on a 2 cm contact: the speculative contact stops it
+  // within a fraction of the radii.
+  EXPECT_LT(deepest, 0.1 * (cable.rod().settings().radius + rope.settings().radius));
+  // The middle rests on top of the kinematic rope (centre lines the radii apart, up to the contact's
+  // small resting depth), the ends hang down on both sides.
+  const Rod& rod = cable.rod();
+  const double middle = rod.position(0.5 * (rod.beginParameter() + rod.endParameter())).y();
+  EXPECT_NEAR(middle, rod.settings().radius + rope.settings().radius, 2e-3);
+  EXPECT_LT(rod.position(rod.beginParameter()).y(), middle - 0.1);
+  EXPECT_LT(rod.position(rod.endParameter()).y(), middle - 0.1);
+  EXPECT_TRUE(bitwiseEqual(rope.tractrix().controlPoints(), before));
+  ropes.removeRope(cable);
+}
+
+TEST(KinematicRope, SweepThroughADynamicRopeCarriesItAlongWithoutPassingThrough) {
+  // The kinematic rope, laid along -z from its leading end, is dragged along +x (sweepPath: 0.6 m/s
+  // for 1 s) through a cable lying across its way on a static floor: the leading part pushes the
+  // cable ahead of it and never lets it through.
+  World w(9.81);
+  w.box(btVector3(2, btScalar(0.05), 2), btVector3(0, btScalar(-0.05 - 0.0101), 0), 0.0);  // top at y = -0.0101
+  RopeWorld ropes(w.world);
+  // Along z at x = 0.2, resting on the floor, across the leading end's path (which runs along z = 0).
+  RopeObject cable(Rod::fromSegment(cableSettings(), Vec3(0.2, 0.0, -0.3), Vec3(0.2, 0.0, 0.3)));
+  ropes.addRope(cable);
+  KinematicRope rope(straightRope());
+  rope.addToWorld(w.world);
+  rope.followPath(sweepPath);
+  const Rod& rod = cable.rod();
+  const double radii = rod.settings().radius + rope.settings().radius;
+  const auto middle = [&rod] { return rod.position(0.5 * (rod.beginParameter() + rod.endParameter())); };
+  double deepest = 0.0;
+  for (int i = 0; i < 360; ++i) {  // 1.5 s
+    w.step(1);
+    deepest = std::max(deepest, deepestRopeOverlap(rope, cable));
+    // The end of the sweep: the cable is ahead of the leading end by about the radii (it is pushed at
+    // 0.6 m/s by the leading capsules).
+    if (i == 239) {
+      EXPECT_GT(middle().x(), rope.leadingEnd().x() + 0.5 * radii);
+    }
+  }
+  RecordProperty("deepest_overlap_mm", std::to_string(deepest * 1e3));
+  // Never through: at most the sweep's travel in one substep (0.6 m/s x 1/240 s = 2.5 mm) plus a
+  // twentieth of the radii. Measured: 2.57 mm, at the impact on the kinematic rope's rounded leading
+  // end, whose first speculative contact the active set releases (the impact's sliding friction runs
+  // along the cable there); from the next substep on the cable is pushed ahead (overlap <= 1.2 mm).
+  EXPECT_LT(deepest, 0.6 * kStep + 0.05 * radii);
+  // Carried from x = 0.2 past the leading end's final place (it slides on a little on the floor).
+  EXPECT_GT(middle().x(), 0.6 + radii);
+  EXPECT_TRUE(rope.lastStep().contacts.empty());  // one-way: the kinematic rope pushed no body
   ropes.removeRope(cable);
 }
 

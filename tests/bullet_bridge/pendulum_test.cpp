@@ -51,11 +51,13 @@ Swing swingInBullet(double h, double seconds, double swingAngle = kSwing) {
   // at the arm L + r, its own inertia 2/5 M r^2 (it turns with the rope), the rope a uniform bar, and
   // the finite amplitude (1 + theta0^2/16).
   // The rope stretches under the ball's weight by the Green–Lagrange law T = (EA/2) g (g^2 - 1)
-  // (method eq. 13; 0.78 % here, which alone lengthens the period by 0.39 %).
+  // (method eq. 13; 0.78 % here, which alone lengthens the period by 0.39 %), and the ball hangs
+  // T / k below the rope's end on the attachment's spring (k = AttachmentSettings::stiffness: 0.98 mm,
+  // which alone lengthens the period by 0.049 %; AHangingBallStretchesTheAttachment... checks it).
   const double ea = rope.rod().settings().axialStiffness(), tension = kBall * 9.81;
   double gamma = 1.0 + tension / ea;
   for (int i = 0; i < 50; ++i) gamma -= (0.5 * ea * gamma * (gamma * gamma - 1.0) - tension) / (0.5 * ea * (3.0 * gamma * gamma - 1.0));
-  const double arm = gamma * length + kRadius;
+  const double arm = gamma * length + tension / AttachmentSettings{}.stiffness + kRadius;
   const double inertia = kBall * arm * arm + 0.4 * kBall * kRadius * kRadius + 0.01 * length * length / 3.0;
   const double torque = (kBall * arm + 0.01 * length * length / 2.0) * 9.81;
   Swing result;
@@ -107,30 +109,28 @@ TEST(BulletPendulum, AHangingBallStretchesTheAttachmentByItsWeightOverTheStiffne
   }
 }
 
-// Measured: 99.909 % of the swing kept, period 0.058 % long (the rod alone, rod_time_integration_test:
-// 99.994 % and 0.010 %; the rest is the attachment, whose spring acts in series with the ball's inertia,
-// seriesWithBody). Backward Euler kept 69 %; with the attachment capped by the ball's smallest
-// effective mass instead (before seriesWithBody) 99.906 % and 0.112 %.
+// Measured: 99.909 % of the swing kept, period 0.012 % long (the rod alone, rod_time_integration_test:
+// 99.994 % and 0.010 %). Backward Euler kept 69 %.
 TEST(BulletPendulum, KeepsItsSwingAndPeriodOverTwentySecondsAt240Hz) {
   const double h = 1.0 / 240;
   const Swing swing = swingInBullet(h, 20.0);
   report(h, swing);
-  EXPECT_GE(swing.amplitudeKept, 0.98);
+  // The issue's targets were 98 % and 0.1 %; bounds a few times the measured loss and error.
+  EXPECT_GE(swing.amplitudeKept, 0.997);
   EXPECT_LE(swing.amplitudeKept, 1.0 + 1e-3);
-  EXPECT_LT(std::abs(swing.period / swing.expectedPeriod - 1.0), 1e-3);
+  EXPECT_LT(std::abs(swing.period / swing.expectedPeriod - 1.0), 3e-4);
 }
 
-// Open (label `open`, issue 15): at 1/60 s the coupled pendulum keeps 99.44 % of its swing (target
-// 95 %: met) but its period is 0.129 % long (target 0.1 %). The rod alone is 0.095 % long at this
-// step (BDF2's own phase error, rod_time_integration_test); the rest is the coupling: Bullet's
-// action runs after the ball has moved, so the rope's end follows the ball one step behind. (Capped
-// for an explicit body update it was 98.4 % and 0.33 %; with the spring in series with the ball's
-// inertia but the ball's weight left out of its predicted motion, 99.60 % and 0.133 %.)
+// Measured: 99.60 % of the swing kept, period 0.086 % long (the rod alone: 99.65 % and 0.095 %, BDF2's
+// own phase error at this step). Until the reference counted the attachment's stretch W / k in the
+// arm, that 0.049 % looked like a coupling lag (0.129 %).
 TEST(BulletPendulum, KeepsItsSwingAndPeriodOverTwentySecondsAt60Hz) {
   const double h = 1.0 / 60;
   const Swing swing = swingInBullet(h, 20.0);
   report(h, swing);
-  EXPECT_GE(swing.amplitudeKept, 0.95);
+  // The issue's targets: 95 % (a bound 2.5 times the measured loss instead) and 0.1 %.
+  EXPECT_GE(swing.amplitudeKept, 0.99);
+  EXPECT_LE(swing.amplitudeKept, 1.0 + 1e-3);
   EXPECT_LT(std::abs(swing.period / swing.expectedPeriod - 1.0), 1e-3);
 }
 

@@ -188,6 +188,11 @@ const btCollisionObject& KinematicRope::capsuleObject(int i) const {
   return *objects_[static_cast<std::size_t>(i)];
 }
 
+std::pair<double, double> KinematicRope::capsuleParameters(int i) const {
+  capsule(i);  // checks i
+  return {ends_[static_cast<std::size_t>(i)], ends_[static_cast<std::size_t>(i) + 1]};
+}
+
 btVector3 KinematicRope::surfaceVelocity(int i, const btVector3& point) const {
   const Capsule axis = capsule(i);  // checks i
   const double h = moveStep_;

@@ -48,6 +48,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bullet_bridge/bullet_precision.h"
@@ -144,6 +145,8 @@ class KinematicRope {
   // Capsules at the last substep (or at addToWorld), leading end first.
   int capsuleCount() const { return static_cast<int>(objects_.size()); }
   Capsule capsule(int i) const;                              // "i" out of range
+  // The curve parameters of capsule i's two ends (its axis runs from C(first) to C(second)).
+  std::pair<double, double> capsuleParameters(int i) const;  // "i" out of range
   const btCollisionObject& capsuleObject(int i) const;       // "i" out of range
   // The kinematic rope a collision object stands in for, or nullptr.
   static KinematicRope* ropeOf(const btCollisionObject& object);

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "bullet_bridge/find_contacts.h"
+#include "bullet_bridge/kinematic_rope.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
 
@@ -99,6 +100,10 @@ class RopeRayCallback : public btBroadphaseRayCallback {
 
   bool process(const btBroadphaseProxy* proxy) override {
     const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+    if (const KinematicRope* kinematic = KinematicRope::ropeOf(*object)) {
+      processKinematic(*kinematic, object->getUserIndex());
+      return true;
+    }
     const RopeObject* rope = CapsuleProxies::ropeOf(*object);
     if (rope == nullptr || !world_.contains(*rope)) return true;
     struct Leaves : btDbvt::ICollide {
@@ -127,6 +132,24 @@ class RopeRayCallback : public btBroadphaseRayCallback {
   std::optional<RayHit> best;
 
  private:
+  // One capsule object of a kinematic rope (each capsule is its own broadphase object).
+  void processKinematic(const KinematicRope& rope, int index) {
+    if (index < 0 || index >= rope.capsuleCount()) return;
+    const Capsule capsule = rope.capsule(index);
+    double lambda = 0.0, t = 0.0;
+    if (!rayCapsule(from_, to_ - from_, capsule, lambda, t)) return;
+    if (best && !(lambda < best->fraction)) return;
+    const auto [s0, s1] = rope.capsuleParameters(index);
+    RayHit hit;
+    hit.kinematicRope = &rope;
+    hit.fraction = lambda;
+    hit.s = s0 + t * (s1 - s0);
+    hit.point = from_ + (to_ - from_) * static_cast<btScalar>(lambda);
+    const btVector3 outward = hit.point - capsule.axisPoint(static_cast<btScalar>(t));
+    hit.normal = outward.length() > btScalar(0) ? outward.normalized() : btVector3(0, 0, 1);
+    best = hit;
+  }
+
   const RopeWorld& world_;
   btVector3 from_, to_;
 };

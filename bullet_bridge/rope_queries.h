@@ -19,6 +19,7 @@
 
 namespace rope::bullet {
 
+class KinematicRope;
 class RopeObject;
 class RopeWorld;
 
@@ -44,14 +45,17 @@ std::optional<RopeHitLocation> ropeHit(const btCollisionObject& object, const bt
 struct RayHit {
   const btCollisionObject* body = nullptr;  // the body hit, or nullptr for a rope
   const RopeObject* rope = nullptr;         // the rope hit, or nullptr for a body
-  double s = 0.0;                           // rope parameter at the hit (ropes only)
+  const KinematicRope* kinematicRope = nullptr;  // the kinematic rope hit (in the same Bullet world), or nullptr
+  double s = 0.0;                           // rope parameter at the hit (ropes and kinematic ropes)
   double fraction = 1.0;                    // along from -> to, in [0, 1]
   btVector3 point{0, 0, 0};                 // world frame, m
   btVector3 normal{0, 0, 1};                // unit surface normal at the hit
 };
 
 // Closest rope surface crossed by the segment from -> to (rays starting inside a rope capsule do not
-// hit that capsule). Throws InvalidArgument("from"/"to") for non-finite points.
+// hit that capsule): the world's ropes and the kinematic ropes of its Bullet world (KinematicRope,
+// whose capsule objects Bullet's own rayTest does not see). Throws InvalidArgument("from"/"to") for
+// non-finite points.
 std::optional<RayHit> rayTestRopes(const RopeWorld& world, const btVector3& from, const btVector3& to);
 // Closest hit over the world's bodies (Bullet's closest-hit rayTest) and its ropes.
 std::optional<RayHit> rayTest(const RopeWorld& world, const btVector3& from, const btVector3& to);

@@ -17,9 +17,11 @@
 #include <vector>
 
 #include "bullet_bridge/find_contacts.h"
+#include "bullet_bridge/rope_queries.h"
 #include "bullet_bridge/rope_world.h"
 #include "demos/scenes/bullet_world.h"
 #include "rope/common/error.h"
+#include "rope/spline/bspline_curve.h"
 
 namespace rope::bullet {
 namespace {
@@ -567,6 +569,36 @@ TEST(KinematicRope, SweepThroughADynamicRopeCarriesItAlongWithoutPassingThrough)
   EXPECT_GT(middle().x(), 0.6 + radii);
   EXPECT_TRUE(rope.lastStep().contacts.empty());  // one-way: the kinematic rope pushed no body
   ropes.removeRope(cable);
+}
+
+TEST(KinematicRope, RayTestsHitItsCapsuleSurfaceExactly) {
+  // Bullet's own rayTest passes through a kinematic rope (its capsule objects have no shape Bullet
+  // tests); rope::bullet::rayTestRopes and rayTest hit the capsule in closed form.
+  World w;
+  RopeWorld ropes(w.world);
+  KinematicRope rope(straightRope());  // along -z from the origin, radius 1 cm
+  rope.addToWorld(w.world);
+  const double r = rope.settings().radius;
+  for (const double z : {-0.13, -0.5, -0.87}) {
+    const btVector3 from(1, btScalar(0.004), btScalar(z)), to(-1, btScalar(0.004), btScalar(z));
+    for (const auto& hit : {rayTestRopes(ropes, from, to), rayTest(ropes, from, to)}) {
+      ASSERT_TRUE(hit.has_value()) << "z = " << z;
+      EXPECT_EQ(hit->kinematicRope, &rope);
+      EXPECT_EQ(hit->rope, nullptr);
+      EXPECT_EQ(hit->body, nullptr);
+      // The capsule's surface: x^2 + y^2 = r^2 on the straight rope's axis (the z axis).
+      const double x = std::sqrt(r * r - 0.004 * 0.004);
+      EXPECT_NEAR(hit->point.x(), x, 1e-12);
+      EXPECT_NEAR(hit->fraction, (1.0 - x) / 2.0, 1e-12);
+      EXPECT_NEAR(hit->normal.x(), x / r, 1e-12);
+      EXPECT_NEAR(hit->normal.y(), 0.004 / r, 1e-12);
+      // s is on the capsule hit: the curve there is the axis point at the hit's z.
+      const Vec3 c = curvePosition(rope.tractrix().knots(), rope.tractrix().controlPoints(), hit->s);
+      EXPECT_NEAR(c.z(), z, 1e-9);
+    }
+    // Passing beside the rope: no hit.
+    EXPECT_FALSE(rayTestRopes(ropes, btVector3(1, btScalar(2 * r), btScalar(z)), btVector3(-1, btScalar(2 * r), btScalar(z))));
+  }
 }
 
 TEST(KinematicRope, BadInputThrowsNamingTheParameterAndChangesNothing) {

@@ -161,9 +161,11 @@ class RopeAabbCallback : public btBroadphaseAabbCallback {
     const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
     const RopeObject* rope = CapsuleProxies::ropeOf(*object);
     if (rope != nullptr && world_.contains(*rope)) ropes.push_back(rope);
+    if (KinematicRope::ropeOf(*object) != nullptr) kinematicCapsules.push_back(object);
     return true;
   }
   std::vector<const RopeObject*> ropes;
+  std::vector<const btCollisionObject*> kinematicCapsules;
 
  private:
   const RopeWorld& world_;
@@ -243,6 +245,26 @@ std::vector<RopeContactHit> contactTest(const RopeWorld& world, const btCollisio
         hit.contact = contact;
         hits.push_back(hit);
       }
+    }
+  }
+  // Kinematic rope capsules (one broadphase object each), in the world's object order.
+  std::sort(callback.kinematicCapsules.begin(), callback.kinematicCapsules.end(),
+            [](const btCollisionObject* a, const btCollisionObject* b) {
+              return a->getWorldArrayIndex() < b->getWorldArrayIndex();
+            });
+  for (const btCollisionObject* capsuleObject : callback.kinematicCapsules) {
+    const KinematicRope& rope = *KinematicRope::ropeOf(*capsuleObject);
+    const int index = capsuleObject->getUserIndex();
+    if (capsuleObject == &object || index < 0 || index >= rope.capsuleCount()) continue;
+    contacts.clear();
+    findContacts(rope.capsule(index), object, margin, contacts);
+    const auto [s0, s1] = rope.capsuleParameters(index);
+    for (const Contact& contact : contacts) {
+      RopeContactHit hit;
+      hit.kinematicRope = &rope;
+      hit.s = s0 + static_cast<double>(contact.t) * (s1 - s0);
+      hit.contact = contact;
+      hits.push_back(hit);
     }
   }
   return hits;

@@ -62,12 +62,14 @@ std::optional<RayHit> rayTest(const RopeWorld& world, const btVector3& from, con
 
 struct RopeContactHit {
   const RopeObject* rope = nullptr;
+  const KinematicRope* kinematicRope = nullptr;  // set instead of rope for a kinematic rope's capsule
   double s = 0.0;   // rope parameter of the contact
   Contact contact;  // as findContacts reports it (normal from the object into the rope)
 };
 
 // Every contact between `object` (at its current transform; it need not be in the world) and the
-// ropes' capsules, up to the signed distance `margin` (m, >= 0). Throws InvalidArgument("margin"),
+// ropes' capsules, then the kinematic ropes' of the same Bullet world, up to the signed distance
+// `margin` (m, >= 0). Throws InvalidArgument("margin"),
 // "object.shape" for an object without a shape or one the narrowphase does not support
 // (find_contacts.h), or "object.transform.*" for a non-finite transform.
 std::vector<RopeContactHit> contactTest(const RopeWorld& world, const btCollisionObject& object, double margin = 0.0);

@@ -571,9 +571,10 @@ TEST(KinematicRope, SweepThroughADynamicRopeCarriesItAlongWithoutPassingThrough)
   ropes.removeRope(cable);
 }
 
-TEST(KinematicRope, RayTestsHitItsCapsuleSurfaceExactly) {
+TEST(KinematicRope, QueriesHitItsCapsuleSurfaceExactly) {
   // Bullet's own rayTest passes through a kinematic rope (its capsule objects have no shape Bullet
-  // tests); rope::bullet::rayTestRopes and rayTest hit the capsule in closed form.
+  // tests); rope::bullet::rayTestRopes and rayTest hit the capsule in closed form, and contactTest
+  // finds a body touching it.
   World w;
   RopeWorld ropes(w.world);
   KinematicRope rope(straightRope());  // along -z from the origin, radius 1 cm
@@ -595,6 +596,22 @@ TEST(KinematicRope, RayTestsHitItsCapsuleSurfaceExactly) {
       // s is on the capsule hit: the curve there is the axis point at the hit's z.
       const Vec3 c = curvePosition(rope.tractrix().knots(), rope.tractrix().controlPoints(), hit->s);
       EXPECT_NEAR(c.z(), z, 1e-9);
+    }
+    // A 1 cm ball touching the rope's surface from +x at this z: contactTest finds it, at s here.
+    btSphereShape ballShape(btScalar(0.01));
+    btCollisionObject ball;
+    ball.setCollisionShape(&ballShape);
+    ball.getWorldTransform().setIdentity();
+    ball.getWorldTransform().setOrigin(btVector3(btScalar(r + 0.01 - 1e-3), 0, btScalar(z)));
+    // (One contact per capsule it touches: two where it sits on a capsule end.)
+    const std::vector<RopeContactHit> contacts = contactTest(ropes, ball, 0.0);
+    ASSERT_GE(contacts.size(), 1u) << "z = " << z;
+    ASSERT_LE(contacts.size(), 2u) << "z = " << z;
+    for (const RopeContactHit& contact : contacts) {
+      EXPECT_EQ(contact.kinematicRope, &rope);
+      EXPECT_EQ(contact.rope, nullptr);
+      EXPECT_NEAR(contact.contact.distance, -1e-3, 1e-12);
+      EXPECT_NEAR(curvePosition(rope.tractrix().knots(), rope.tractrix().controlPoints(), contact.s).z(), z, 1e-9);
     }
     // Passing beside the rope: no hit.
     EXPECT_FALSE(rayTestRopes(ropes, btVector3(1, btScalar(2 * r), btScalar(z)), btVector3(-1, btScalar(2 * r), btScalar(z))));

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "bullet_bridge/rope_object.h"
 
-
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -13,6 +12,7 @@
 #include "bullet_bridge/contact/distributed_loads.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
+#include "rope/rod/axial_force.h"
 #include "rope/spline/bspline_curve.h"
 
 namespace rope::bullet {
@@ -115,9 +115,7 @@ void RopeObject::applyDistributedForce(double s0, double s1, const btVector3& fo
 
 double RopeObject::tension(double s) const {
   requireParameter(rod_, s);
-  const double stretch = 1.0 + rod_.strain(s);  // |C'| / l0'
-  // T = dW/dg of W = (EA/8) (g^2 - 1)^2 per metre of rest length (stretching_energy.h).
-  return 0.5 * rod_.settings().axialStiffness() * (stretch * stretch - 1.0) * stretch;
+  return axialForce(rod_, s);
 }
 
 double RopeObject::attachmentTension(int id) const {

@@ -101,9 +101,10 @@ class RopeObject {
 
   // ---- tension ----
   // The axial force in the rope at s, N (> 0 pulling, < 0 compressed): the material's elastic
-  // force along the curve from the stretching law (docs/method.md §6), T = (EA/2) (g^2 - 1) g with
-  // g = |C'(s)| / l0'(s) the stretch, at the rope's current state. Throws InvalidArgument("s", ...)
-  // for s outside the rope or NaN.
+  // force from the stretching law (docs/method.md §6), T = (EA/2) (g^2 - 1) g with g the stretch, as
+  // the rod's stretching quadrature samples it (rope::axialForce, rope/rod/axial_force.h: interpolated
+  // between the sample points, so the readout carries exactly what the rod's forces carry), at the
+  // rope's current state. Throws InvalidArgument("s", ...) for s outside the rope or NaN.
   double tension(double s) const;
   // The tension at an attachment (at its s). Throws InvalidArgument("id", ...) for an unknown id.
   double attachmentTension(int id) const;

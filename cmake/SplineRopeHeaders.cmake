@@ -29,6 +29,7 @@ set(SPLINEROPE_ROPE_API_HEADERS
   rope/rod/rod_settings.h
   rope/rod/rod.h
   rope/rod/coupled_solve.h
+  rope/rod/axial_force.h
   rope/tractrix/tractrix_settings.h
   rope/tractrix/tractrix_rope.h
   rope/tractrix/tractrix_segment.h

@@ -80,6 +80,11 @@ class BodyContacts {
     ContactLaw law;                             // weighted: N/m, N s/m
     SampleFriction friction;
     double pressureEstimate = -1.0;             // N/m from the stored anchors, < 0: none
+    // The surface's curvature along the rope (springOf): the unit rope tangent in the contact's
+    // tangent plane, and how fast the normal turns along it, 1/m (> 0 convex, < 0 concave).
+    Vec3 along = Vec3::Zero();
+    double curvature = 0.0;
+    double geometricLimit = 0.0;                // N/m: cap on the turning normal's stiffness
     ContactSpring spring;
     bool active = false;
     int record = -1;
@@ -92,10 +97,16 @@ class BodyContacts {
   // system failed (the trial is then unchanged).
   bool solveSlidingBounds(Rod& rod, double h);
   void capBodies(double h, double share);
+  // The sample's spring (sampleSpring) with the normal turning and the gap opening as the rope
+  // slides over a curved surface (see the .cpp).
+  static ContactSpring springOf(const Sample& sample, double h);
+  // Where the body receives a sample's impulse: its body point moved on with the rope's slide.
+  static btVector3 bodyPointAfter(const Sample& sample, const Vec3& slip, double radius, double h);
   void markConcentratedLoads(Rod& rod, double ratio) const;
 
   LineContactSampler sampler_;
   std::vector<ContactSample> scratch_;
+  Contact probe_;  // gatherBody's curvature probe
   std::vector<Contact> chordContacts_;
   std::vector<int> nearCapsules_;  // gatherBody's midphase result
   btNodeStack treeStack_;          // and its traversal stack

@@ -17,11 +17,11 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Creep bound of a rope that holds, and the slip speed above which it clearly slides (1 cm/s; at
 // 1.1 exp(mu theta) Coulomb friction predicts an acceleration of about F_heavy / 11 / (total mass)
-// ~ 0.8 m/s^2, i.e. tenths of a metre per second within the window; measured 127-1849 mm/s over the
-// cylinder, 15-49 mm/s over a taut rope).
-// m/s: sticking holds (measured creep: at most 8.8e-8 m/s, at theta = 2 pi, mu = 0.3; under 3.5e-8 m/s
+// ~ 0.8 m/s^2, i.e. tenths of a metre per second within the window; measured 78-231 mm/s over the
+// cylinder, 17-256 mm/s over a taut rope).
+// m/s: sticking holds (measured creep: at most 1.1e-7 m/s, at theta = 2 pi, mu = 0.3; under 1e-8 m/s
 // for theta <= pi), far below the 1 mm/s a regularised friction law at frictionVelocity = 1 mm/s
-// creeps at. Bound 3x the worst.
+// creeps at. Bound about 3x the worst.
 constexpr double kCreepBound = 3.0e-7;
 constexpr double kSlipBound = 1.0e-2;   // m/s
 

@@ -90,8 +90,8 @@ TEST(RopeWorldScenario, RopeDrapesOverThinBarAndStays) {
   EXPECT_LT(rod.position(rod.beginParameter()).y(), 0.8);
   EXPECT_LT(rod.position(rod.endParameter()).y(), 0.8);
   EXPECT_GT(scene.rope().lastStep().contacts, 0);
-  // No tunnelling: measured 1.73 mm deep at worst, while landing (the README's 1.7 mm); bound 2x.
-  EXPECT_LT(deepest, 0.35 * radius);
+  // No tunnelling: measured 0.82 mm deep at worst, while landing (the README's figure); bound 2.4x.
+  EXPECT_LT(deepest, 0.2 * radius);
   std::printf("thin bar: deepest penetration %.3g m, top %.4f m\n", deepest, scene.highestPoint());
 }
 

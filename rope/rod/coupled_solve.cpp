@@ -52,7 +52,7 @@ void CoupledSolve::ensureResponse(int p) {
   const Rod& owner = *rods_[static_cast<size_t>(point.rod)];
   const int n3 = 3 * owner.controlPointCount();
   point.response.resize(static_cast<size_t>(3 * n3));
-  for (int axis = 0; axis < 3; ++axis) owner.trialImpulseResponse(point.s, axis, &point.response[static_cast<size_t>(axis * n3)]);
+  owner.trialImpulseResponses(point.s, point.response.data());
 }
 
 Eigen::Matrix3d CoupledSolve::zBlock(size_t k, size_t l) const {

@@ -91,7 +91,8 @@ void CapsuleProxies::rebuild(const Rod& rod) {
   const KnotVector& knots = rod.knots();
   const double begin = rod.beginParameter();
   const double end = rod.endParameter();
-  std::vector<double> ends;
+  std::vector<double>& ends = ends_;  // kept between calls: no allocation in a steady state
+  ends.clear();
   ends.push_back(begin);
   double previous = begin;
   for (int i = 0; i < knots.size(); ++i) {
@@ -137,6 +138,9 @@ int CapsuleProxies::updateBoxes(const Rod& rod, double predictionTime, double ma
   btDbvt& tree = *shape_->getDynamicAabbTree();
   const btScalar slack = static_cast<btScalar>(kLeafSlack) * radius_;
   const btVector3 slack3(slack, slack, slack);
+  // Each end is shared by two capsules: its speed once.
+  speeds_.resize(ends_.size());
+  for (std::size_t i = 0; i < ends_.size(); ++i) speeds_[i] = rod.velocity(ends_[i]).norm();
   for (int i = 0; i < size(); ++i) {
     // The compound's children follow here, not in every rebuild: only Bullet's queries read them,
     // between steps (4 % of a 1000-rope step when placed twice per substep).
@@ -148,7 +152,7 @@ int CapsuleProxies::updateBoxes(const Rod& rod, double predictionTime, double ma
     const btScalar bulge = (toBullet(rod.position(0.5 * (proxy.s0 + proxy.s1))) - (a + b) * btScalar(0.5)).length();
     // How far the capsule can move in the step, in any direction (the body and rope-rope midphase
     // test the chord's box grown by it: body_contacts.cpp, rope_rope_contact.cpp).
-    const double reach = predictionTime * std::max(rod.velocity(proxy.s0).norm(), rod.velocity(proxy.s1).norm());
+    const double reach = predictionTime * std::max(speeds_[static_cast<std::size_t>(i)], speeds_[static_cast<std::size_t>(i) + 1]);
     const btScalar pad = radius_ + static_cast<btScalar>(margin + reach) + bulge;
     btVector3 lo = a, hi = a;
     lo.setMin(b);

@@ -100,6 +100,8 @@ class CapsuleProxies {
   btScalar radius_;
   std::vector<CapsuleProxy> proxies_;
   std::vector<btVector3> axis_;  // size() + 1 axis points at the last rebuild
+  std::vector<double> ends_;     // scratch of rebuild: the capsule ends' curve parameters
+  std::vector<double> speeds_;   // scratch of updateBoxes: |C'(s)| at each capsule end, m/s
   std::vector<std::unique_ptr<RopeCapsuleShape>> capsuleShapes_;
   std::unique_ptr<RopeShape> shape_;
   std::unique_ptr<btCollisionObject> object_;

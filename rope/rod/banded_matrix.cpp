@@ -102,6 +102,49 @@ void SymmetricBandedMatrix::backSubstitute(double* x) const {
   }
 }
 
+void SymmetricBandedMatrix::forwardSubstitute3(double* x, int firstRow) const {
+  const int w = bandwidth_;
+  double* x0 = x;
+  double* x1 = x + size_;
+  double* x2 = x + 2 * size_;
+  for (int r = firstRow; r < size_; ++r) {
+    const int c0 = std::max(firstRow, r - w);
+    const double* row = &band_[static_cast<size_t>(r) * static_cast<size_t>(w + 1)];  // row[c - r + w] = L(r, c)
+    double sum0 = x0[r], sum1 = x1[r], sum2 = x2[r];
+    for (int c = c0; c < r; ++c) {
+      const double l = row[c - r + w];
+      sum0 -= l * x0[c];
+      sum1 -= l * x1[c];
+      sum2 -= l * x2[c];
+    }
+    x0[r] = sum0 / row[w];
+    x1[r] = sum1 / row[w];
+    x2[r] = sum2 / row[w];
+  }
+}
+
+void SymmetricBandedMatrix::backSubstitute3(double* x) const {
+  const int w = bandwidth_;
+  double* x0 = x;
+  double* x1 = x + size_;
+  double* x2 = x + 2 * size_;
+  for (int r = size_ - 1; r >= 0; --r) {
+    const double diagonal = band_[static_cast<size_t>(index(r, r))];
+    const double value0 = x0[r] / diagonal, value1 = x1[r] / diagonal, value2 = x2[r] / diagonal;
+    x0[r] = value0;
+    x1[r] = value1;
+    x2[r] = value2;
+    const int c0 = std::max(0, r - w);
+    const double* row = &band_[static_cast<size_t>(index(r, c0))];
+    for (int c = c0; c < r; ++c) {
+      const double l = row[c - c0];
+      x0[c] -= l * value0;
+      x1[c] -= l * value1;
+      x2[c] -= l * value2;
+    }
+  }
+}
+
 void SymmetricBandedMatrix::solve(double* x) const {
   forwardSubstitute(x, 0);
   backSubstitute(x);

@@ -52,13 +52,34 @@ void CoupledSolve::ensureResponse(int p) {
   const Rod& owner = *rods_[static_cast<size_t>(point.rod)];
   const int n3 = 3 * owner.controlPointCount();
   point.response.resize(static_cast<size_t>(3 * n3));
-  for (int axis = 0; axis < 3; ++axis) owner.trialImpulseResponse(point.s, axis, &point.response[static_cast<size_t>(axis * n3)]);
+  owner.trialImpulseResponses(point.s, point.response.data());
 }
 
 Eigen::Matrix3d CoupledSolve::zBlock(size_t k, size_t l) const {
   // Z = J P J^T, block (k, l) = Y(a_k, a_l) - Y(a_k, b_l) - Y(b_k, a_l) + Y(b_k, b_l).
   return crossResponse(pointA_[k], pointA_[l]) - crossResponse(pointA_[k], pointB_[l]) -
          crossResponse(pointB_[k], pointA_[l]) + crossResponse(pointB_[k], pointB_[l]);
+}
+
+const Eigen::Matrix3d& CoupledSolve::zBlockCached(size_t k, size_t l) {
+  const size_t m = couplings_.size();
+  int& column = zColumn_[l];
+  if (column < 0) {
+    column = zColumns_++;
+    const size_t needed = static_cast<size_t>(zColumns_) * m;
+    if (zCache_.size() < needed) {
+      zCache_.resize(needed);
+      zKnown_.resize(needed);
+    }
+    std::fill(zKnown_.begin() + static_cast<std::ptrdiff_t>(needed - m),
+              zKnown_.begin() + static_cast<std::ptrdiff_t>(needed), char{0});
+  }
+  const size_t at = static_cast<size_t>(column) * m + k;
+  if (!zKnown_[at]) {
+    zCache_[at] = zBlock(k, l);
+    zKnown_[at] = 1;
+  }
+  return zCache_[at];
 }
 
 Eigen::Matrix3d CoupledSolve::crossResponse(int p, int q) const {
@@ -114,6 +135,8 @@ void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<Poin
   }
 
   acting_.clear();
+  zColumn_.assign(m, -1);
+  zColumns_ = 0;
 }
 
 bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vector<Vec3>& impulses) {
@@ -147,7 +170,7 @@ bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vect
         eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
     impulse_.segment<3>(3 * i) = laws[k].impulse;
     for (int j = 0; j <= i; ++j) {
-      const Eigen::Matrix3d block = zBlock(k, static_cast<size_t>(acting_[static_cast<size_t>(j)]));
+      const Eigen::Matrix3d block = zBlockCached(k, static_cast<size_t>(acting_[static_cast<size_t>(j)]));
       zActing_.block<3, 3>(3 * i, 3 * j) = block;
       zActing_.block<3, 3>(3 * j, 3 * i) = block.transpose();
     }
@@ -172,11 +195,11 @@ bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vect
   return true;
 }
 
-Vec3 CoupledSolve::relativeChange(int k, const std::vector<Vec3>& impulses) const {
+Vec3 CoupledSolve::relativeChange(int k, const std::vector<Vec3>& impulses) {
   Vec3 change = trialChange_[static_cast<size_t>(k)];
   for (size_t l = 0; l < impulses.size(); ++l) {
     if (impulses[l].isZero(0.0)) continue;
-    change += zBlock(static_cast<size_t>(k), l) * impulses[l];
+    change += zBlockCached(static_cast<size_t>(k), l) * impulses[l];
   }
   return change;
 }

@@ -159,24 +159,33 @@ bool ConstrainedSolver::solve(const SymmetricBandedMatrix& factor, const std::ve
 }
 
 void ConstrainedSolver::solveHomogeneous(const SymmetricBandedMatrix& factor, double* x, int firstRow) {
-  const int size = factor.size();
   factor.forwardSubstitute(x, firstRow);
-  if (columns_ > 0) {
-    // lambda = (Z^T Z)^-1 Z^T y, the multipliers that keep G dv = 0.
-    for (int r = 0; r < columns_; ++r) {
-      const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
-      double projected = 0.0;
-      for (int i = std::max(start_[static_cast<size_t>(r)], firstRow); i < size; ++i) projected += zr[i] * x[i];
-      lambda_(r) = projected;
-    }
-    lambda_ = llt_.solve(lambda_);
-    for (int r = 0; r < columns_; ++r) {
-      const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
-      const double l = lambda_(r);
-      for (int i = start_[static_cast<size_t>(r)]; i < size; ++i) x[i] -= zr[i] * l;
-    }
-  }
+  projectOutConstraints(factor.size(), x, firstRow);
   factor.backSubstitute(x);
+}
+
+void ConstrainedSolver::solveHomogeneous3(const SymmetricBandedMatrix& factor, double* x, int firstRow) {
+  const int size = factor.size();
+  factor.forwardSubstitute3(x, firstRow);
+  for (int column = 0; column < 3; ++column) projectOutConstraints(size, x + column * size, firstRow);
+  factor.backSubstitute3(x);
+}
+
+void ConstrainedSolver::projectOutConstraints(int size, double* x, int firstRow) {
+  if (columns_ == 0) return;
+  // lambda = (Z^T Z)^-1 Z^T y, the multipliers that keep G dv = 0.
+  for (int r = 0; r < columns_; ++r) {
+    const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
+    double projected = 0.0;
+    for (int i = std::max(start_[static_cast<size_t>(r)], firstRow); i < size; ++i) projected += zr[i] * x[i];
+    lambda_(r) = projected;
+  }
+  lambda_ = llt_.solve(lambda_);
+  for (int r = 0; r < columns_; ++r) {
+    const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
+    const double l = lambda_(r);
+    for (int i = start_[static_cast<size_t>(r)]; i < size; ++i) x[i] -= zr[i] * l;
+  }
 }
 
 }  // namespace rope

@@ -102,10 +102,16 @@ class ConstrainedSolver {
   // for extra impulses whose effect must respect the pins. Solving from the first non-zero row of x
   // (firstRow) skips work for loads near the far end.
   void solveHomogeneous(const SymmetricBandedMatrix& factor, double* x, int firstRow = 0);
+  // The same for three right-hand sides x[0..N), x[N..2N), x[2N..3N) at once (N = factor.size()),
+  // each with exactly the arithmetic of solveHomogeneous.
+  void solveHomogeneous3(const SymmetricBandedMatrix& factor, double* x, int firstRow = 0);
   // Whether solveHomogeneous may be called (a solve() succeeded and this is not a copy made since).
   bool ready() const { return ready_; }
 
  private:
+  // Between the substitutions of solveHomogeneous: y <- y - Z lambda with the multipliers
+  // lambda = (Z^T Z)^-1 Z^T y that keep G dv = 0 (nothing without constraints).
+  void projectOutConstraints(int size, double* x, int firstRow);
   int columns_ = 0;
   bool ready_ = false;
   std::vector<int> owner_;       // constraint (index into rows) of each column

@@ -577,6 +577,27 @@ void Rod::trialImpulseResponse(double s, const Vec3& direction, double* response
   const_cast<ConstrainedSolver&>(solver_).solveHomogeneous(system_, response, 3 * first);
 }
 
+void Rod::trialImpulseResponses(double s, double* responses) const {
+  validateParameter(s);
+  if (!trialValid_ || !solver_.ready()) {
+    throw InvalidArgument("trial", "none", "solveTrial() must have succeeded on this rod since the last change");
+  }
+  const int n3 = 3 * controlPointCount();
+  const int d = degree();
+  const int k = knots_.findSpan(s);
+  BasisValues basis;
+  evaluateBasis(knots_, k, s, 0, basis);
+  const int first = k - d;
+  std::fill(responses, responses + 3 * n3, 0.0);
+  for (int axis = 0; axis < 3; ++axis) {
+    const Vec3 direction = Vec3::Unit(axis);
+    double* response = responses + axis * n3;
+    for (int a = 0; a <= d; ++a)
+      for (int c = 0; c < 3; ++c) response[3 * (first + a) + c] = basis.d[0][static_cast<size_t>(a)] * direction[c];
+  }
+  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous3(system_, responses, 3 * first);
+}
+
 void Rod::correctTrial(const double* dv) {
   if (!trialValid_) throw InvalidArgument("trial", "none", "solveTrial() must have succeeded since the last change");
   const int n = controlPointCount();

@@ -238,6 +238,9 @@ class Rod {
   // The same for an impulse of 1 N s along `direction` (any finite vector, its length included): one
   // O(n) solve instead of three.
   void trialImpulseResponse(double s, const Vec3& direction, double* response) const;
+  // All three axes at once (responses: 3 columns of 3n doubles, axis 0, 1, 2), bitwise the same as
+  // three calls with axis 0, 1, 2, in one pass over the factor (about half the time).
+  void trialImpulseResponses(double s, double* responses) const;
   // Adds dv (3n doubles) to the trial velocities (and h dv to its positions): the effect of extra
   // impulses computed with trialImpulseResponse.
   void correctTrial(const double* dv);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -175,6 +176,49 @@ TEST(CoupledSolve, StiffSpringStopsTheRelativeMotion) {
   ASSERT_TRUE(solve.solveImpulses({law}, impulses));
   EXPECT_LT(std::abs(n.dot(solve.relativeChange(0, impulses))), 1e-8 * (1.0 + solve.trialRelativeChange(0).norm()));
   EXPECT_GT(std::abs(n.dot(solve.trialRelativeChange(0))), 1e-3);
+}
+
+// The three-axis response (one pass over the factor) is bitwise the one-axis response, pins included.
+TEST(CoupledSolve, ThreeAxisResponsesAreTheSingleAxisOnesBitwise) {
+  TwoRods setup;
+  for (Rod* rod : {&setup.a, &setup.b}) {
+    ASSERT_TRUE(rod->solveTrial(TwoRods::kStep).ok);
+    const size_t n3 = static_cast<size_t>(3 * rod->controlPointCount());
+    for (const double s : {rod->beginParameter(), 0.37 * rod->endParameter(), rod->endParameter()}) {
+      std::vector<double> together(3 * n3, std::numeric_limits<double>::quiet_NaN());
+      rod->trialImpulseResponses(s, together.data());
+      for (int axis = 0; axis < 3; ++axis) {
+        std::vector<double> single(n3);
+        rod->trialImpulseResponse(s, axis, single.data());
+        for (size_t i = 0; i < n3; ++i) {
+          EXPECT_EQ(std::memcmp(&single[i], &together[static_cast<size_t>(axis) * n3 + i], sizeof(double)), 0)
+              << "s " << s << " axis " << axis << " entry " << i;
+        }
+      }
+    }
+  }
+}
+
+// Z blocks are cached per step: a second pass with other laws predicts what a fresh solve predicts.
+TEST(CoupledSolve, RepeatedPassesPredictWhatAFreshSolvePredicts) {
+  TwoRods setup;
+  CoupledSolve solve;
+  std::vector<Vec3> impulses;
+  ASSERT_TRUE(setup.solve(solve, impulses));
+  std::vector<CouplingLaw> other = setup.laws;
+  other[1] = CouplingLaw{};  // one coupling released, another stiffer
+  other[2].admittance *= 3.0;
+  ASSERT_TRUE(solve.solveImpulses(other, impulses));
+  CoupledSolve fresh;
+  fresh.prepare({&setup.a, &setup.b}, setup.couplings);
+  std::vector<Vec3> freshImpulses;
+  ASSERT_TRUE(fresh.solveImpulses(other, freshImpulses));
+  for (int k = 0; k < solve.size(); ++k) {
+    const Vec3 again = solve.relativeChange(k, impulses), once = fresh.relativeChange(k, freshImpulses);
+    EXPECT_EQ(std::memcmp(again.data(), once.data(), sizeof(double) * 3), 0) << k;
+    EXPECT_EQ(std::memcmp(impulses[static_cast<size_t>(k)].data(), freshImpulses[static_cast<size_t>(k)].data(),
+                          sizeof(double) * 3), 0) << k;
+  }
 }
 
 TEST(CoupledSolve, RejectsBadInputAndLeavesRodsAlone) {

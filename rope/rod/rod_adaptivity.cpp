@@ -15,13 +15,54 @@ namespace rope {
 
 namespace {
 
-// Whether a removal sweep from this side could pass the shape and rest-curve bounds (m): the plan
-// chooses its side by the length errors later, and the removal needs both bounds on the side chosen.
-bool sideWithinBounds(const KnotRemoval& plan, KnotRemoval::Side side, const PointList& rest, double bound) {
-  if (!(plan.shapeError[side] <= bound)) return false;
-  KnotRemoval sided = plan;
-  sided.chosen = side;
-  return localRemoval(sided, rest).error <= bound;
+// What a removal asks of the side its sweep runs from, except the length error that picks the side.
+struct RemovalLimits {
+  double shape = 0.0;            // m: the curve's and the rest curve's change
+  double velocity = 0.0;         // m/s: the velocity field's change
+  double insertThreshold = 0.0;  // bend measure above which the coarser polygon would refine at once
+  bool mechanical = false;       // RemovalCriterion::kMechanical applies in this step
+  MechanicsBounds mechanics;
+};
+
+struct RemovalSide {
+  bool passes = false;
+  LocalRemoval points, velocities;  // the sweep applied to the state (filled as far as the checks got)
+};
+
+// The checks of one side (plan.chosen), cheapest first. The plan's side is picked later by the
+// length errors, which cost far more (a Gauss integral over the window, both sides): a candidate is
+// given them only if one side could pass, so a rope whose candidates all fail (a vibrating one under
+// kMechanical: 60 % of a pendulum's step went into length errors that were never used) skips them.
+RemovalSide checkSide(const KnotRemoval& plan, const PointList& rest, const PointList& points,
+                      const PointList& velocities, const RodIntegrals& integrals, const RemovalLimits& limits) {
+  RemovalSide side;
+  if (!(plan.chosenShapeError() <= limits.shape)) return side;
+  if (!(localRemoval(plan, rest).error <= limits.shape)) return side;
+  // Look ahead: the polygon after removal must not qualify for insertion at once.
+  side.points = localRemoval(plan, points);
+  for (int i = 1; i + 1 < static_cast<int>(side.points.after.size()); ++i) {
+    if (!(bendMeasure(side.points.after, i) <= limits.insertThreshold)) return side;
+  }
+  // The velocity field follows the same removal sweep and is just as inexact; where it moves by more
+  // than the bound (an impact, a whip), the coarser spline cannot carry the motion and the rope's
+  // momentum would change with it.
+  side.velocities = localRemoval(plan, velocities);
+  if (!(side.velocities.error <= limits.velocity)) return side;
+  // kMechanical: the bounds above are absolute, and a small vibration or a gentle load moves nothing
+  // by much; the coarser spline must also carry the motion and the internal energy relative to their
+  // own size here, or the rope would vibrate and sag as a coarser, different rope.
+  if (limits.mechanical &&
+      !(removalMechanics(integrals, points, velocities, side.points, side.velocities, limits.mechanics).worst() <= 1.0)) {
+    return side;
+  }
+  side.passes = true;
+  return side;
+}
+
+RemovalSide checkSide(KnotRemoval plan, KnotRemoval::Side chosen, const PointList& rest, const PointList& points,
+                      const PointList& velocities, const RodIntegrals& integrals, const RemovalLimits& limits) {
+  plan.chosen = chosen;
+  return checkSide(plan, rest, points, velocities, integrals, limits);
 }
 
 }  // namespace
@@ -164,11 +205,15 @@ void Rod::adapt(StepReport& report) {
   const double bound = settings_.removalErrorBound;
   const bool mechanical = settings_.removalCriterion == RemovalCriterion::kMechanical ||
                           (settings_.removalCriterion == RemovalCriterion::kMechanicalOutOfContact && !contactLastStep_);
-  MechanicsBounds mechanics;
-  mechanics.relative = settings_.removalRelativeError;
-  mechanics.axialStiffness = settings_.axialStiffness();
-  mechanics.positionFloor = settings_.removalRelativeError * bound;
-  mechanics.velocityFloor = settings_.removalRelativeError * settings_.removalVelocityErrorBound;
+  RemovalLimits limits;
+  limits.shape = bound;
+  limits.velocity = settings_.removalVelocityErrorBound;
+  limits.insertThreshold = insertThreshold;
+  limits.mechanical = mechanical;
+  limits.mechanics.relative = settings_.removalRelativeError;
+  limits.mechanics.axialStiffness = settings_.axialStiffness();
+  limits.mechanics.positionFloor = settings_.removalRelativeError * bound;
+  limits.mechanics.velocityFloor = settings_.removalRelativeError * settings_.removalVelocityErrorBound;
   for (int r = controlPointCount() - 1; r >= d + 1; --r) {
     const int n = controlPointCount();
     if (n - 1 < settings_.minControlPoints || n - 1 <= static_cast<int>(pins_.size())) break;
@@ -191,34 +236,15 @@ void Rod::adapt(StepReport& report) {
     // step in planKnotRemoval before).
     const KnotRemoval shape = planKnotRemovalShape(knots_, points_, t);
     if (!(std::min(shape.shapeError[0], shape.shapeError[1]) <= bound)) continue;
-    // Likewise when neither side keeps the rest curve within the bound (the checks below make the
-    // same test on the chosen side): in the knot scene 87 % of the candidates that passed the shape
-    // test failed it, after their length errors (a tenth of the step) had been integrated.
-    if (!sideWithinBounds(shape, KnotRemoval::kFromLeft, rest_, bound) &&
-        !sideWithinBounds(shape, KnotRemoval::kFromRight, rest_, bound))
-      continue;
+    // Every check but the length error, on both sides: the length errors only where one could pass
+    // (checkSide), and then the side they pick must (the same computation as its check here).
+    const RemovalSide left = checkSide(shape, KnotRemoval::kFromLeft, rest_, points_, velocities_, integrals_, limits);
+    const RemovalSide right = checkSide(shape, KnotRemoval::kFromRight, rest_, points_, velocities_, integrals_, limits);
+    if (!left.passes && !right.passes) continue;
     const KnotRemoval plan = planKnotRemoval(knots_, points_, t);
-    if (!(plan.chosenShapeError() <= bound)) continue;
-    const LocalRemoval restRemoval = localRemoval(plan, rest_);
-    if (!(restRemoval.error <= bound)) continue;
-    // Look ahead: the polygon after removal must not qualify for insertion at once.
-    const LocalRemoval pointRemoval = localRemoval(plan, points_);
-    bool stays = true;
-    for (int i = 1; i + 1 < static_cast<int>(pointRemoval.after.size()); ++i)
-      stays = stays && bendMeasure(pointRemoval.after, i) <= insertThreshold;
-    if (!stays) continue;
-    // The velocity field follows the same removal sweep and is just as inexact; where it moves
-    // by more than the bound (an impact, a whip), the coarser spline cannot carry the motion and
-    // the rope's momentum would change with it.
-    const LocalRemoval velocityRemoval = localRemoval(plan, velocities_);
-    const double velocityError = velocityRemoval.error;
-    if (!(velocityError <= settings_.removalVelocityErrorBound)) continue;
-    // kMechanical: the bounds above are absolute, and a small vibration or a gentle load moves
-    // nothing by much; the coarser spline must also carry the motion and the internal energy relative
-    // to their own size here, or the rope would vibrate and sag as a coarser, different rope.
-    if (mechanical &&
-        !(removalMechanics(integrals_, points_, velocities_, pointRemoval, velocityRemoval, mechanics).worst() <= 1.0))
-      continue;
+    const RemovalSide& chosen = plan.chosen == KnotRemoval::kFromLeft ? left : right;
+    if (!chosen.passes) continue;
+    const double velocityError = chosen.velocities.error;
     const double correction = applyRemoval(plan);
     ++report.removals;
     report.maxRemovalError = std::max(report.maxRemovalError, plan.chosenShapeError());

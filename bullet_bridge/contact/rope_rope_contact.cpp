@@ -45,6 +45,18 @@ double restArcAt(const Rod& rod, const std::vector<double>& starts, double s) {
   return starts[static_cast<size_t>(j)] + fraction * (starts[static_cast<size_t>(j) + 1] - starts[static_cast<size_t>(j)]);
 }
 
+// Distance between the axis-aligned boxes of two capsule axes, m: a lower bound of the axes' distance.
+double axisBoxGap(const Capsule& a, const Capsule& b) {
+  double gap2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double aLow = std::min(a.a[i], a.b[i]), aHigh = std::max(a.a[i], a.b[i]);
+    const double bLow = std::min(b.a[i], b.b[i]), bHigh = std::max(b.a[i], b.b[i]);
+    const double apart = std::max({0.0, bLow - aHigh, aLow - bHigh});
+    gap2 += apart * apart;
+  }
+  return std::sqrt(gap2);
+}
+
 double parameterAt(const CapsuleProxy& proxy, double t) {
   if (t <= 0.0) return proxy.s0;
   if (t >= 1.0) return proxy.s1;  // exactly the neighbour's s0: shared ends give identical contacts
@@ -129,6 +141,10 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     const double margin = std::min(std::max(ropeA.settings().speculativeMargin, ropeB.settings().speculativeMargin),
                                    0.5 * radii);
     const double reach = margin + h * (std::max(endsA[0].speed, endsA[1].speed) + std::max(endsB[0].speed, endsB[1].speed));
+    // The axes' boxes apart by more than that: the axes are too (most pairs the tree reports in a
+    // knot, whose leaves are padded for rope-body contact). A lower bound of the distance, so the
+    // exact test below decides every pair it lets through, with a relative slack for its rounding.
+    if (axisBoxGap(capsuleA, capsuleB) > (radii + reach) * (1.0 + 1e-9)) continue;
     const SegmentPairClosest closest = segmentSegmentClosest(capsuleA.a, capsuleA.b, capsuleB.a, capsuleB.b);
     if (!(closest.distance - radii < reach)) continue;
 
@@ -161,20 +177,13 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     candidate.arcA = arcSA;
     candidate.arcB = arcSB;
     candidate.spacing = radii;
-    candidate.law = pairLaw(ropeA.settings(), ropeB.settings());
-    if (combiner_) {
-      candidate.law.friction = combiner_(ropeA, ropeB);
-      if (!(std::isfinite(candidate.law.friction) && candidate.law.friction >= 0.0)) {
-        throw InvalidArgument("rope friction combiner", formatValue(candidate.law.friction),
-                              "must return a finite value >= 0");
-      }
-    }
     candidate.distance = centres - radii;
     candidate.normal = normal;
-    candidate.relativeVelocity = rodA.velocity(sA) - rodB.velocity(sB);
     candidate.frictionNormalForce = -1.0;
-    candidate.coupled = rodA.hasTrial() && rodB.hasTrial();
     candidate.active = false;
+    // law, relativeVelocity and coupled: for the kept candidates only, after the thinning.
+    candidate.relativeVelocity = Vec3::Zero();
+    candidate.coupled = false;
     candidates_.push_back(candidate);
   }
 
@@ -182,9 +191,20 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   // side-by-side contact) several times. Deepest first; a candidate within one contact spacing (the sum
   // of the radii, along both rest curves) of an accepted one is dropped, so a line contact is sampled
   // about once per diameter.
-  std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
+  // Sorted through small keys (a knot has about 900 candidates of some 200 bytes each). Candidates
+  // with equal keys are the same contact found twice (one point, the same everything), so their
+  // order does not matter.
+  sortKeys_.clear();
+  for (size_t c = 0; c < candidates_.size(); ++c) {
+    const Candidate& k = candidates_[c];
+    sortKeys_.push_back({k.distance, k.ropeA, k.sA, k.ropeB, k.sB, static_cast<int>(c)});
+  }
+  std::sort(sortKeys_.begin(), sortKeys_.end(), [](const SortKey& a, const SortKey& b) {
     return std::tie(a.distance, a.ropeA, a.sA, a.ropeB, a.sB) < std::tie(b.distance, b.ropeA, b.sA, b.ropeB, b.sB);
   });
+  sorted_.clear();
+  for (const SortKey& key : sortKeys_) sorted_.push_back(candidates_[static_cast<size_t>(key.index)]);
+  candidates_.swap(sorted_);
   // The accepted ones are also kept ordered by (ropeA, ropeB, arcA), so each test looks only at those
   // within one spacing along A: O(c log c) instead of comparing every candidate with every accepted
   // one (a tight knot has hundreds of candidates).
@@ -218,6 +238,20 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     ++kept;
   }
   candidates_.resize(kept);
+  for (Candidate& candidate : candidates_) {
+    const RopeObject& ropeA = *ropes[static_cast<size_t>(candidate.ropeA)];
+    const RopeObject& ropeB = *ropes[static_cast<size_t>(candidate.ropeB)];
+    candidate.law = pairLaw(ropeA.settings(), ropeB.settings());
+    if (combiner_) {
+      candidate.law.friction = combiner_(ropeA, ropeB);
+      if (!(std::isfinite(candidate.law.friction) && candidate.law.friction >= 0.0)) {
+        throw InvalidArgument("rope friction combiner", formatValue(candidate.law.friction),
+                              "must return a finite value >= 0");
+      }
+    }
+    candidate.relativeVelocity = ropeA.rod().velocity(candidate.sA) - ropeB.rod().velocity(candidate.sB);
+    candidate.coupled = ropeA.rod().hasTrial() && ropeB.rod().hasTrial();
+  }
   for (Candidate& candidate : candidates_) {
     const RopeObject& ropeA = *ropes[static_cast<size_t>(candidate.ropeA)];
     const RopeObject& ropeB = *ropes[static_cast<size_t>(candidate.ropeB)];

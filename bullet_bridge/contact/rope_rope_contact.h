@@ -69,6 +69,16 @@ class RopeRopeContacts {
     bool active;
   };
   std::vector<Candidate> candidates_;
+  struct SortKey {
+    double distance;
+    int ropeA;
+    double sA;
+    int ropeB;
+    double sB;
+    int index;  // into candidates_
+  };
+  std::vector<SortKey> sortKeys_;
+  std::vector<Candidate> sorted_;
   std::vector<int> keptByArc_;  // accepted candidates ordered by (ropeA, ropeB, arcA), during the thinning
   std::vector<PointCoupling> couplings_;
   std::vector<CouplingLaw> laws_;

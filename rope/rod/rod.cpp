@@ -566,10 +566,8 @@ void Rod::trialImpulseResponse(double s, const Vec3& direction, double* response
   }
   const int n = controlPointCount();
   const int d = degree();
-  const int k = knots_.findSpan(s);
   BasisValues basis;
-  evaluateBasis(knots_, k, s, 0, basis);
-  const int first = k - d;
+  const int first = basisAt(knots_, s, basis);
   std::fill(response, response + 3 * n, 0.0);
   for (int a = 0; a <= d; ++a)
     for (int c = 0; c < 3; ++c) response[3 * (first + a) + c] = basis.d[0][static_cast<size_t>(a)] * direction[c];
@@ -584,10 +582,8 @@ void Rod::trialImpulseResponses(double s, double* responses) const {
   }
   const int n3 = 3 * controlPointCount();
   const int d = degree();
-  const int k = knots_.findSpan(s);
   BasisValues basis;
-  evaluateBasis(knots_, k, s, 0, basis);
-  const int first = k - d;
+  const int first = basisAt(knots_, s, basis);
   std::fill(responses, responses + 3 * n3, 0.0);
   for (int axis = 0; axis < 3; ++axis) {
     const Vec3 direction = Vec3::Unit(axis);

@@ -195,6 +195,8 @@ std::pair<double, double> KinematicRope::capsuleParameters(int i) const {
 
 btVector3 KinematicRope::surfaceVelocity(int i, const btVector3& point) const {
   const Capsule axis = capsule(i);  // checks i
+  static const char* const kAxes[3] = {"point.x", "point.y", "point.z"};
+  for (int c = 0; c < 3; ++c) requireFinite(kAxes[c], static_cast<double>(point[c]));
   const double h = moveStep_;
   if (h == 0.0) return btVector3(0, 0, 0);
   const btVector3 along = axis.b - axis.a;

@@ -153,7 +153,7 @@ class KinematicRope {
   // Velocity (m/s) of the rope's surface at `point` near capsule i over the last substep: the capsule's
   // end points' motion over that substep, interpolated at the point's projection on the axis. Zero
   // before the first substep and after one that did not move the rope (skipped, or failed). What a dynamic rope touching this rope sees as the other side's velocity.
-  btVector3 surfaceVelocity(int i, const btVector3& point) const;  // "i" out of range
+  btVector3 surfaceVelocity(int i, const btVector3& point) const;  // "i" out of range, "point.x|y|z" not finite
 
  private:
   class Action;

@@ -665,6 +665,9 @@ TEST(KinematicRope, BadInputThrowsNamingTheParameterAndChangesNothing) {
   expectThrowNaming("path", [&] { rope.followPath(std::function<btVector3(double)>()); });
   expectThrowNaming("i", [&] { rope.capsule(-1); });
   expectThrowNaming("i", [&] { rope.capsuleObject(rope.capsuleCount()); });
+  expectThrowNaming("i", [&] { rope.capsuleParameters(rope.capsuleCount()); });
+  expectThrowNaming("i", [&] { rope.surfaceVelocity(-1, btVector3(0, 0, 0)); });
+  expectThrowNaming("point.z", [&] { rope.surfaceVelocity(0, btVector3(0, 0, static_cast<btScalar>(nan))); });
   // Nothing changed: still in the first world, still driven to the first target, no body followed.
   EXPECT_EQ(rope.world(), &w.world);
   EXPECT_EQ(rope.followedBody(), nullptr);

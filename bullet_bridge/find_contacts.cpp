@@ -12,7 +12,6 @@
 #include "bullet_bridge/narrowphase/concave_contact.h"
 #include "bullet_bridge/narrowphase/convex_contact.h"
 #include "bullet_bridge/narrowphase/convex_support.h"
-#include "bullet_bridge/narrowphase/segment_segment_distance.h"
 #include "rope/common/error.h"
 
 namespace rope::bullet {
@@ -72,32 +71,20 @@ void appendContacts(const Capsule& capsule, const btCollisionShape& shape,
   for (std::size_t i = first; i < out.size(); ++i) out[i].childIndex = childIndex;
 }
 
-// The capsule against another capsule (a kinematic rope's): closest points of the two axes.
-void capsuleContact(const Capsule& capsule, const Capsule& other, btScalar margin, std::vector<Contact>& out) {
-  const SegmentPairClosest closest = segmentSegmentClosest(capsule.a, capsule.b, other.a, other.b);
-  const btScalar distance = static_cast<btScalar>(closest.distance) - capsule.radius - other.radius;
-  if (distance > margin) return;
-  const btVector3 onAxis = capsule.a + (capsule.b - capsule.a) * static_cast<btScalar>(closest.s);
-  const btVector3 onOther = other.a + (other.b - other.a) * static_cast<btScalar>(closest.t);
-  btVector3 normal = onAxis - onOther;
-  if (normal.length2() > btScalar(1e-24)) {
-    normal.normalize();
-  } else {
-    // The axes meet: separate across both (or any direction normal to the capsule's).
-    normal = (capsule.b - capsule.a).cross(other.b - other.a);
-    if (normal.length2() < btScalar(1e-24)) {
-      btVector3 unused;
-      btPlaneSpace1(capsule.b - capsule.a, normal, unused);
-    }
-    normal.normalize();
-  }
+// A kinematic rope's capsule object is its capsule: a segment core rounded by the radius, as a
+// btCapsuleShape is (narrowphase/convex_support.h), through the same capsule-convex contact.
+void kinematicCapsuleContact(const Capsule& capsule, const Capsule& other, btScalar margin, std::vector<Contact>& out) {
+  const btVector3 axis = other.b - other.a;
+  ConvexCore core;
+  core.kind = ConvexCore::Kind::Segment;
+  core.upAxis = 1;
+  core.halfHeight = axis.length() / 2;
+  core.rounding = other.radius;
+  core.size = core.halfHeight;
+  btTransform coreToWorld(btQuaternion::getIdentity(), (other.a + other.b) * btScalar(0.5));
+  if (core.halfHeight > 0) coreToWorld.setRotation(shortestArcQuat(btVector3(0, 1, 0), axis / axis.length()));
   Contact contact;
-  contact.t = static_cast<btScalar>(closest.s);
-  contact.normal = normal;
-  contact.pointOnCapsule = onAxis - normal * capsule.radius;
-  contact.pointOnBody = onOther + normal * other.radius;
-  contact.distance = distance;
-  out.push_back(contact);
+  if (convexContact(capsule, core, coreToWorld, margin, contact)) out.push_back(contact);
 }
 
 }  // namespace
@@ -112,7 +99,7 @@ void findContacts(const Capsule& capsule, const btCollisionObject& object, doubl
   }
   if (const KinematicRope* rope = KinematicRope::ropeOf(object)) {
     if (object.getUserIndex() >= 0 && object.getUserIndex() < rope->capsuleCount()) {
-      capsuleContact(capsule, rope->capsule(object.getUserIndex()), btScalar(margin), out);
+      kinematicCapsuleContact(capsule, rope->capsule(object.getUserIndex()), btScalar(margin), out);
     }
     return;
   }

@@ -113,10 +113,7 @@ void RopeObject::applyDistributedForce(double s0, double s1, const btVector3& fo
   queueDistributedForce(rod_, s0, s1, toVec(forcePerLength));
 }
 
-double RopeObject::tension(double s) const {
-  requireParameter(rod_, s);
-  return axialForce(rod_, s);
-}
+double RopeObject::tension(double s) const { return axialForce(rod_, s); }  // validates s
 
 double RopeObject::attachmentTension(int id) const {
   return tension(attachments_[static_cast<std::size_t>(findAttachment(id))].s);

@@ -112,19 +112,10 @@ class RopeRayCallback : public btBroadphaseRayCallback {
     } leaves;
     btDbvt::rayTest(rope->proxies().tree().m_root, from_, to_, leaves);
     for (const int index : leaves.capsules) {
-      const Capsule capsule = rope->proxies().capsule(index);
-      double lambda = 0.0, t = 0.0;
-      if (!rayCapsule(from_, to_ - from_, capsule, lambda, t)) continue;
-      if (best && !(lambda < best->fraction)) continue;
       const CapsuleProxy& capsuleProxy = rope->proxies().proxy(index);
       RayHit hit;
       hit.rope = rope;
-      hit.fraction = lambda;
-      hit.s = capsuleProxy.s0 + t * (capsuleProxy.s1 - capsuleProxy.s0);
-      hit.point = from_ + (to_ - from_) * static_cast<btScalar>(lambda);
-      const btVector3 outward = hit.point - capsule.axisPoint(static_cast<btScalar>(t));
-      hit.normal = outward.length() > btScalar(0) ? outward.normalized() : btVector3(0, 0, 1);
-      best = hit;
+      consider(rope->proxies().capsule(index), capsuleProxy.s0, capsuleProxy.s1, hit);
     }
     return true;
   }
@@ -135,13 +126,18 @@ class RopeRayCallback : public btBroadphaseRayCallback {
   // One capsule object of a kinematic rope (each capsule is its own broadphase object).
   void processKinematic(const KinematicRope& rope, int index) {
     if (index < 0 || index >= rope.capsuleCount()) return;
-    const Capsule capsule = rope.capsule(index);
-    double lambda = 0.0, t = 0.0;
-    if (!rayCapsule(from_, to_ - from_, capsule, lambda, t)) return;
-    if (best && !(lambda < best->fraction)) return;
     const auto [s0, s1] = rope.capsuleParameters(index);
     RayHit hit;
     hit.kinematicRope = &rope;
+    consider(rope.capsule(index), s0, s1, hit);
+  }
+
+  // The exact hit of the ray on a capsule whose axis runs from C(s0) to C(s1), kept if nearest so far;
+  // hit names the rope.
+  void consider(const Capsule& capsule, double s0, double s1, RayHit& hit) {
+    double lambda = 0.0, t = 0.0;
+    if (!rayCapsule(from_, to_ - from_, capsule, lambda, t)) return;
+    if (best && !(lambda < best->fraction)) return;
     hit.fraction = lambda;
     hit.s = s0 + t * (s1 - s0);
     hit.point = from_ + (to_ - from_) * static_cast<btScalar>(lambda);

@@ -24,11 +24,33 @@ double diagonal2(const btVector3& lo, const btVector3& hi) {
   return static_cast<double>(d.x()) * d.x() + static_cast<double>(d.y()) * d.y() + static_cast<double>(d.z()) * d.z();
 }
 
+// A kinematic rope's object: no Bullet pair except with a dynamic rope's object, which the dynamic
+// rope's RopeWorld takes (rope_dispatch.h). Bullet's dispatcher asks checkCollideWith before it makes
+// an algorithm; its queries (rayTest, contactTest, convexSweepTest) do not ask, so they still see it.
+class PairsWithRopesOnly : public btCollisionObject {
+ public:
+  PairsWithRopesOnly() { m_checkCollideWith = 1; }
+  bool checkCollideWithOverride(const btCollisionObject* other) const override {
+    return other != nullptr && CapsuleProxies::ropeOf(*other) != nullptr;
+  }
+};
+
 }  // namespace
 
+void capsuleEnds(const KnotVector& knots, double begin, double end, int pieces, std::vector<double>& ends) {
+  ends.clear();
+  ends.push_back(begin);
+  double previous = begin;
+  for (int i = 0; i < knots.size(); ++i) {
+    const double knot = knots[i];
+    if (!(knot > previous) || knot > end) continue;
+    for (int j = 1; j <= pieces; ++j) ends.push_back(j == pieces ? knot : previous + (knot - previous) * j / pieces);
+    previous = knot;
+  }
+}
+
 CapsuleProxies::CapsuleProxies(RopeObject& owner, int capsulesPerSpan, double radius)
-    : owner_(owner),
-      capsulesPerSpan_(capsulesPerSpan),
+    : capsulesPerSpan_(capsulesPerSpan),
       radius_(static_cast<btScalar>(radius)),
       shape_(std::make_unique<RopeShape>()),
       object_(std::make_unique<btCollisionObject>()) {
@@ -38,10 +60,27 @@ CapsuleProxies::CapsuleProxies(RopeObject& owner, int capsulesPerSpan, double ra
   object_->setCollisionFlags(object_->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |
                              btCollisionObject::CF_NO_CONTACT_RESPONSE |
                              btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT);
-  object_->setUserPointer(&owner_);
+  object_->setUserPointer(&owner);
   object_->setUserIndex2(kRopeCapsuleTag);
   // Always active, so Bullet's dispatcher hands every broadphase pair of the rope (against sleeping
   // and static bodies too) to the rope's collision algorithm (rope_dispatch.h).
+  object_->setActivationState(DISABLE_DEACTIVATION);
+}
+
+CapsuleProxies::CapsuleProxies(void* owner, int tag, double radius)
+    : capsulesPerSpan_(1),
+      radius_(static_cast<btScalar>(radius)),
+      shape_(std::make_unique<RopeShape>()),
+      object_(std::make_unique<PairsWithRopesOnly>()) {
+  object_->setCollisionShape(shape_.get());
+  object_->getWorldTransform().setIdentity();
+  // The kinematic rope draws its centre line itself (its action's debugDraw).
+  object_->setCollisionFlags(object_->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |
+                             btCollisionObject::CF_NO_CONTACT_RESPONSE |
+                             btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT);
+  object_->setUserPointer(owner);
+  object_->setUserIndex2(tag);
+  // Active, so that Bullet hands its pairs with (always active) dynamic ropes to their RopeWorld.
   object_->setActivationState(DISABLE_DEACTIVATION);
 }
 
@@ -87,32 +126,25 @@ void CapsuleProxies::placeCapsule(int i) {
 }
 
 void CapsuleProxies::rebuild(const Rod& rod) {
-  // Parameters of the capsule ends: every non-empty span cut into capsulesPerSpan equal pieces.
-  const KnotVector& knots = rod.knots();
-  const double begin = rod.beginParameter();
-  const double end = rod.endParameter();
-  std::vector<double>& ends = ends_;  // kept between calls: no allocation in a steady state
-  ends.clear();
-  ends.push_back(begin);
-  double previous = begin;
-  for (int i = 0; i < knots.size(); ++i) {
-    const double knot = knots[i];
-    if (!(knot > previous) || knot > end) continue;
-    for (int j = 1; j <= capsulesPerSpan_; ++j) {
-      ends.push_back(j == capsulesPerSpan_ ? knot : previous + (knot - previous) * j / capsulesPerSpan_);
-    }
-    previous = knot;
-  }
-  const int count = static_cast<int>(ends.size()) - 1;
+  capsuleEnds(rod.knots(), rod.beginParameter(), rod.endParameter(), capsulesPerSpan_, ends_);  // no allocation in a steady state
+  axis_.resize(ends_.size());
+  for (std::size_t i = 0; i < ends_.size(); ++i) axis_[i] = toBullet(rod.position(ends_[i]));
+  resize(static_cast<int>(ends_.size()) - 1);
+}
 
+void CapsuleProxies::rebuild(const std::vector<double>& ends, const std::vector<btVector3>& axis) {
+  ends_ = ends;
+  axis_ = axis;
+  resize(static_cast<int>(ends_.size()) - 1);
+}
+
+void CapsuleProxies::resize(int count) {
   // Children leave and join at the end only, so child index = capsule index stays true.
   while (size() > count) {
     shape_->removeChildShapeByIndex(size() - 1);
     capsuleShapes_.pop_back();
     proxies_.pop_back();
   }
-  axis_.resize(ends.size());
-  for (std::size_t i = 0; i < ends.size(); ++i) axis_[i] = toBullet(rod.position(ends[i]));
   while (size() < count) {
     CapsuleProxy proxy;
     proxy.object = object_.get();
@@ -127,17 +159,14 @@ void CapsuleProxies::rebuild(const Rod& rod) {
     shape_->getDynamicAabbTree()->update(shape_->getChildList()[size() - 1].m_node, box);
   }
   for (int i = 0; i < count; ++i) {
-    proxies_[static_cast<std::size_t>(i)].s0 = ends[static_cast<std::size_t>(i)];
-    proxies_[static_cast<std::size_t>(i)].s1 = ends[static_cast<std::size_t>(i) + 1];
+    proxies_[static_cast<std::size_t>(i)].s0 = ends_[static_cast<std::size_t>(i)];
+    proxies_[static_cast<std::size_t>(i)].s1 = ends_[static_cast<std::size_t>(i) + 1];
   }
 }
 
 int CapsuleProxies::updateBoxes(const Rod& rod, double predictionTime, double margin) {
   rebuild(rod);
   int overflows = 0;
-  btDbvt& tree = *shape_->getDynamicAabbTree();
-  const btScalar slack = static_cast<btScalar>(kLeafSlack) * radius_;
-  const btVector3 slack3(slack, slack, slack);
   // Each end is shared by two capsules: its speed once.
   speeds_.resize(ends_.size());
   for (std::size_t i = 0; i < ends_.size(); ++i) speeds_[i] = rod.velocity(ends_[i]).norm();
@@ -159,26 +188,37 @@ int CapsuleProxies::updateBoxes(const Rod& rod, double predictionTime, double ma
     hi.setMax(b);
     lo -= btVector3(pad, pad, pad);
     hi += btVector3(pad, pad, pad);
-    const double d2 = diagonal2(lo, hi);
-    if (!std::isfinite(d2) || d2 >= kBulletAabbLimit2) {
-      ++overflows;  // keep the previous leaf: Bullet would take such an object out of the simulation
-      continue;
-    }
-    btDbvtNode* leaf = shape_->getChildList()[i].m_node;
-    const btDbvtVolume box = btDbvtVolume::FromMM(lo, hi);
-    const btDbvtVolume loose = btDbvtVolume::FromMM(lo - slack3 * 2, hi + slack3 * 2);
-    if (!leaf->volume.Contain(box) || !loose.Contain(leaf->volume)) {
-      btDbvtVolume fat = btDbvtVolume::FromMM(lo - slack3, hi + slack3);
-      tree.update(leaf, fat);
-    }
+    if (!fitLeaf(i, lo, hi)) ++overflows;
   }
-  if (tree.m_root == nullptr) return overflows;
+  if (shape_->getDynamicAabbTree()->m_root == nullptr) return overflows;
+  return fitObjectBox() ? overflows : size();
+}
+
+bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {
+  const double d2 = diagonal2(lo, hi);
+  // Keep the previous leaf: Bullet would take such an object out of the simulation.
+  if (!std::isfinite(d2) || d2 >= kBulletAabbLimit2) return false;
+  const btScalar slack = static_cast<btScalar>(kLeafSlack) * radius_;
+  const btVector3 slack3(slack, slack, slack);
+  btDbvtNode* leaf = shape_->getChildList()[i].m_node;
+  const btDbvtVolume box = btDbvtVolume::FromMM(lo, hi);
+  const btDbvtVolume loose = btDbvtVolume::FromMM(lo - slack3 * 2, hi + slack3 * 2);
+  if (!leaf->volume.Contain(box) || !loose.Contain(leaf->volume)) {
+    btDbvtVolume fat = btDbvtVolume::FromMM(lo - slack3, hi + slack3);
+    shape_->getDynamicAabbTree()->update(leaf, fat);
+  }
+  return true;
+}
+
+bool CapsuleProxies::fitObjectBox() {
+  const btDbvt& tree = *shape_->getDynamicAabbTree();
+  if (tree.m_root == nullptr) return true;
   const btVector3 lo = tree.m_root->volume.Mins(), hi = tree.m_root->volume.Maxs();
   const double d2 = diagonal2(lo, hi);
-  if (!std::isfinite(d2) || d2 >= kBulletAabbLimit2) return size();  // the rope's box keeps its last value
+  if (!std::isfinite(d2) || d2 >= kBulletAabbLimit2) return false;  // the rope's box keeps its last value
   shape_->setBox(lo, hi);
   if (world_ != nullptr && !orphaned()) world_->updateSingleAabb(object_.get());
-  return overflows;
+  return true;
 }
 
 void CapsuleProxies::capsulesOverlapping(const btVector3& lo, const btVector3& hi, std::vector<int>& out,

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The rope's one collision object in Bullet's world. Its shape (rope_shape.h) is a compound of
-// capsules of the rope's radius over equal parameter pieces of every knot span (capsulesPerSpan per
-// span; capsules are added and removed at the end as knots come and go, so child index = capsule
-// index along the rope), and the compound's btDbvt is the rope's midphase tree.
+// The one collision object of a rope in Bullet's world, for dynamic ropes (RopeObject) and kinematic
+// tractrix ropes (KinematicRope) alike. Its shape (rope_shape.h) is a compound of capsules of the
+// rope's radius over equal parameter pieces of every knot span (capsulesPerSpan per span; capsules are
+// added and removed at the end as knots come and go, so child index = capsule index along the rope),
+// and the compound's btDbvt is the rope's midphase tree.
 //
 // Why one object per rope and not one per capsule (issue 14): Bullet widens every broadphase box by
 // its contact breaking threshold, so per-capsule boxes paired every capsule with dozens of a
@@ -12,13 +13,17 @@
 // body, a tree of its parts inside. Why a btCompoundShape for that tree: its dynamic AABB tree is
 // exactly such a btDbvt, and every query of btCollisionWorld (rayTest, contactTest, contactPairTest,
 // convexSweepTest) already walks compounds child by child, so ropes show up in them with no query
-// code of ours. The leaves are the capsules' swept boxes, not their tight boxes: each covers the
-// capsule now and over the coming step (positions + h * velocity, in every direction), padded by the
-// radius, the speculative margin and the curve's bulge over the chord, and kept a little fatter
-// (kLeafSlack) so that a rope at rest never touches its tree. The object's broadphase box is the
-// tree's root. The object carries CF_STATIC_OBJECT | CF_NO_CONTACT_RESPONSE and stays active
-// (DISABLE_DEACTIVATION): Bullet's dispatcher then reports each of its broadphase pairs to the
-// bridge (rope_dispatch.h) and never runs a narrowphase or a solver contact for it.
+// code of ours. The leaves are swept boxes, not the capsules' tight boxes: each covers the capsule
+// over the coming step (a dynamic rope: positions + h * velocity, in every direction) or over the
+// step just made (a kinematic rope: where the capsule was and is), padded by the radius, the
+// speculative margin and the curve's bulge over the chord, and kept a little fatter (kLeafSlack) so
+// that a rope at rest never touches its tree. The object's broadphase box is the tree's root. The
+// object carries CF_STATIC_OBJECT | CF_NO_CONTACT_RESPONSE and stays active (DISABLE_DEACTIVATION).
+// A dynamic rope's pairs go to the bridge through Bullet's dispatcher (rope_dispatch.h), which runs
+// no narrowphase or solver contact for them. A kinematic rope finds the bodies it pushes itself
+// (kinematic_rope.h), so its object asks Bullet for no pair except with a dynamic rope's object
+// (btCollisionObject::checkCollideWithOverride): Bullet's dispatcher makes no algorithm, manifold or
+// contact for it, and its queries still see its capsules.
 
 #include <BulletCollision/BroadphaseCollision/btDbvt.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
@@ -36,9 +41,16 @@ namespace rope::bullet {
 
 class RopeObject;
 
-// userIndex2 of every rope's collision object: tells ropes from the user's objects (userPointer is
-// the RopeObject).
+// userIndex2 of every dynamic rope's collision object: tells ropes from the user's objects
+// (userPointer is the RopeObject). A kinematic rope's object carries kKinematicRopeTag
+// (kinematic_rope.h) and points to the KinematicRope.
 constexpr int kRopeCapsuleTag = 0x526f7065;  // "Rope"
+// userIndex2 of every kinematic rope's collision object; userPointer is the KinematicRope.
+constexpr int kKinematicRopeTag = 0x4b526f70;  // "KRop"
+
+// The capsule ends' curve parameters, into `ends` (cleared first): every non-empty knot span of
+// [begin, end] cut into `pieces` equal parameter pieces.
+void capsuleEnds(const KnotVector& knots, double begin, double end, int pieces, std::vector<double>& ends);
 
 struct CapsuleProxy {
   double s0 = 0.0, s1 = 0.0;            // curve parameters of the capsule's axis ends
@@ -47,7 +59,10 @@ struct CapsuleProxy {
 
 class CapsuleProxies {
  public:
+  // What the object stands for: a dynamic rope's proxies ...
   CapsuleProxies(RopeObject& owner, int capsulesPerSpan, double radius);
+  // ... or, with tag kKinematicRopeTag, a kinematic rope's (pairs with dynamic ropes' objects only).
+  CapsuleProxies(void* owner, int tag, double radius);
   ~CapsuleProxies();
   CapsuleProxies(const CapsuleProxies&) = delete;
   CapsuleProxies& operator=(const CapsuleProxies&) = delete;
@@ -66,11 +81,21 @@ class CapsuleProxies {
   // Follows the rod's current knots (adds or removes capsules) and evaluates the capsule axes (the
   // compound's children follow in updateBoxes).
   void rebuild(const Rod& rod);
+  // The same from capsule ends computed by the caller (capsuleEnds) and the curve's points at them
+  // (ends.size() >= 2, axis.size() == ends.size()).
+  void rebuild(const std::vector<double>& ends, const std::vector<btVector3>& axis);
   // Rebuilds, places the compound's capsule children, then sets each capsule's tree leaf to cover the capsule now and after predictionTime
   // (s) of the rod's current velocities, padded by margin (m), and the object's box to the tree's
   // root. A leaf Bullet would drop as too large (diagonal^2 >= 1e12 m^2, its "overflow in AABB"
   // rule) is not applied; the count is returned (all capsules if the whole rope's box is too large).
   int updateBoxes(const Rod& rod, double predictionTime, double margin);
+  // The parts of updateBoxes, for a caller that computes its own swept boxes: placeCapsule moves
+  // compound child i onto capsule i's axis; fitLeaf sets its tree leaf to cover [lo, hi] (false, and
+  // the leaf kept, if Bullet would drop such a box); fitObjectBox sets the object's broadphase box to
+  // the tree's root (false, and the box kept, if too large).
+  void placeCapsule(int i);
+  bool fitLeaf(int i, const btVector3& lo, const btVector3& hi);
+  bool fitObjectBox();
 
   int size() const { return static_cast<int>(proxies_.size()); }
   const CapsuleProxy& proxy(int i) const { return proxies_[static_cast<std::size_t>(i)]; }
@@ -88,14 +113,13 @@ class CapsuleProxies {
   // `out` (cleared first); `stack` is the traversal's scratch.
   void capsulesOverlapping(const btVector3& lo, const btVector3& hi, std::vector<int>& out, btNodeStack& stack) const;
 
-  // The rope a collision object is, or nullptr if it is not a rope's object.
+  // The rope a collision object is, or nullptr if it is not a dynamic rope's object.
   static RopeObject* ropeOf(const btCollisionObject& object);
 
  private:
   void addCapsule();
-  void placeCapsule(int i);
+  void resize(int count);
 
-  RopeObject& owner_;
   int capsulesPerSpan_;
   btScalar radius_;
   std::vector<CapsuleProxy> proxies_;

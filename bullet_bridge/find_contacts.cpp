@@ -71,8 +71,8 @@ void appendContacts(const Capsule& capsule, const btCollisionShape& shape,
   for (std::size_t i = first; i < out.size(); ++i) out[i].childIndex = childIndex;
 }
 
-// A kinematic rope's capsule object is its capsule: a segment core rounded by the radius, as a
-// btCapsuleShape is (narrowphase/convex_support.h), through the same capsule-convex contact.
+// A kinematic rope's capsule is a segment core rounded by the radius, as a btCapsuleShape is
+// (narrowphase/convex_support.h), through the same capsule-convex contact.
 void kinematicCapsuleContact(const Capsule& capsule, const Capsule& other, btScalar margin, std::vector<Contact>& out) {
   const btVector3 axis = other.b - other.a;
   ConvexCore core;
@@ -98,8 +98,23 @@ void findContacts(const Capsule& capsule, const btCollisionObject& object, doubl
     throw InvalidArgument("object.shape", "null", "the collision object has no shape");
   }
   if (const KinematicRope* rope = KinematicRope::ropeOf(object)) {
-    if (object.getUserIndex() >= 0 && object.getUserIndex() < rope->capsuleCount()) {
-      kinematicCapsuleContact(capsule, rope->capsule(object.getUserIndex()), btScalar(margin), out);
+    // Its capsules near this one (a box test: the chain is short next to the cost of a contact), in
+    // capsule order; childIndex = the capsule, as for any compound.
+    const btScalar reach = capsule.radius + static_cast<btScalar>(margin + rope->settings().radius);
+    btVector3 lo = capsule.a, hi = capsule.a;
+    lo.setMin(capsule.b);
+    hi.setMax(capsule.b);
+    lo -= btVector3(reach, reach, reach);
+    hi += btVector3(reach, reach, reach);
+    for (int i = 0; i < rope->capsuleCount(); ++i) {
+      const Capsule other = rope->capsule(i);
+      btVector3 otherLo = other.a, otherHi = other.a;
+      otherLo.setMin(other.b);
+      otherHi.setMax(other.b);
+      if (!TestAabbAgainstAabb2(lo, hi, otherLo, otherHi)) continue;
+      const std::size_t first = out.size();
+      kinematicCapsuleContact(capsule, other, btScalar(margin), out);
+      for (std::size_t c = first; c < out.size(); ++c) out[c].childIndex = i;
     }
     return;
   }

@@ -8,7 +8,8 @@
 // contacts, one per triangle),
 // and btCompoundShape of any of these, nested to any depth (children placed by their local
 // transforms; Contact::childIndex is the index in the object's top-level compound). A kinematic
-// rope's capsule object (KinematicRope::capsuleObject) is its capsule: closest points of the two axes.
+// rope's object (KinematicRope::collisionObject) is its capsules: closest points of the axes, one
+// contact per capsule near, childIndex = the capsule.
 
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 

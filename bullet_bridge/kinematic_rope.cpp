@@ -10,7 +10,6 @@
 #include <tuple>
 
 #include "bullet_bridge/detail/body_state.h"
-#include "bullet_bridge/capsule_proxies.h"  // kRopeCapsuleTag: dynamic rope capsules are not bodies to push
 #include "bullet_bridge/find_contacts.h"
 #include "bullet_bridge/detail/guarded_call.h"
 #include "bullet_bridge/contact/kinematic_push.h"
@@ -22,9 +21,6 @@
 namespace rope::bullet {
 
 namespace {
-
-// Bullet's btCollisionWorld::updateSingleAabb disables objects whose box diagonal^2 reaches 1e12.
-constexpr double kBulletAabbLimit2 = 1e12;
 
 btVector3 toBullet(const Vec3& v) {
   return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
@@ -100,7 +96,8 @@ KinematicRope::KinematicRope(TractrixRope rope, const KinematicRopeSettings& set
       action_(std::make_unique<Action>(*this)),
       target_(rope_.leadingEnd()),
       previousKnots_(rope_.knots()),
-      previousPoints_(rope_.controlPoints()) {
+      previousPoints_(rope_.controlPoints()),
+      proxies_(this, kKinematicRopeTag, settings_.radius) {
   rebuildCapsules(false);
 }
 
@@ -114,26 +111,18 @@ void KinematicRope::addToWorld(btDiscreteDynamicsWorld& world) {
   world_ = &world;
   time_ = 0.0;
   report_ = KinematicRopeStepReport{};
-  for (auto& object : objects_) world.addCollisionObject(object.get(), settings_.collisionGroup, settings_.collisionMask);
+  proxies_.addToWorld(world, settings_.collisionGroup, settings_.collisionMask);
   world.addAction(action_.get());
 }
 
 void KinematicRope::removeFromWorld() {
   if (world_ == nullptr) return;
-  if (!orphaned()) {  // else the Bullet world was destroyed already and must not be touched
-    world_->removeAction(action_.get());
-    for (auto& object : objects_) world_->removeCollisionObject(object.get());
-  }
+  // If the object lost its broadphase handle, the Bullet world was destroyed already and must not be
+  // touched (CapsuleProxies::removeFromWorld leaves it alone then).
+  if (!proxies_.orphaned()) world_->removeAction(action_.get());
+  proxies_.removeFromWorld();
   world_ = nullptr;
   report_.contacts.clear();  // their body pointers may outlive nothing else
-}
-
-bool KinematicRope::orphaned() const {
-  if (world_ == nullptr || objects_.empty()) return false;
-  for (const auto& object : objects_) {
-    if (object->getBroadphaseHandle() != nullptr) return false;
-  }
-  return true;
 }
 
 void KinematicRope::followBodyPoint(btRigidBody* body, const btVector3& localPoint) {
@@ -179,13 +168,6 @@ Capsule KinematicRope::capsule(int i) const {
   capsule.b = axis_[static_cast<std::size_t>(i) + 1];
   capsule.radius = static_cast<btScalar>(settings_.radius);
   return capsule;
-}
-
-const btCollisionObject& KinematicRope::capsuleObject(int i) const {
-  if (i < 0 || i >= capsuleCount()) {
-    throw InvalidArgument("i", std::to_string(i), "must be in [0, " + std::to_string(capsuleCount()) + ")");
-  }
-  return *objects_[static_cast<std::size_t>(i)];
 }
 
 std::pair<double, double> KinematicRope::capsuleParameters(int i) const {
@@ -302,18 +284,7 @@ void KinematicRope::moveAndPush(double h) {
 void KinematicRope::rebuildCapsules(bool swept) {
   // Capsule ends: every non-empty span in capsulesPerSpan equal parameter pieces (one for polylines).
   const KnotVector& knots = rope_.knots();
-  const int pieces = rope_.degree() == 1 ? 1 : settings_.capsulesPerSpan;
-  const double begin = knots.validBegin();
-  const double end = knots.validEnd();
-  ends_.clear();
-  ends_.push_back(begin);
-  double previous = begin;
-  for (int i = 0; i < knots.size(); ++i) {
-    const double knot = knots[i];
-    if (!(knot > previous) || knot > end) continue;
-    for (int j = 1; j <= pieces; ++j) ends_.push_back(j == pieces ? knot : previous + (knot - previous) * j / pieces);
-    previous = knot;
-  }
+  capsuleEnds(knots, knots.validBegin(), knots.validEnd(), rope_.degree() == 1 ? 1 : settings_.capsulesPerSpan, ends_);
   const std::size_t count = ends_.size() - 1;
 
   const PointList& points = rope_.controlPoints();
@@ -332,30 +303,14 @@ void KinematicRope::rebuildCapsules(bool swept) {
     bulge_[i] = (middle - (axis_[i] + axis_[i + 1]) * btScalar(0.5)).length();
   }
 
-  // Objects follow the count (adaptivity adds and removes spans).
-  while (objects_.size() > count) {
-    if (world_ != nullptr) world_->removeCollisionObject(objects_.back().get());
-    objects_.pop_back();
-    shapes_.pop_back();
-  }
-  while (objects_.size() < count) {
-    shapes_.push_back(std::make_unique<SweptBoxShape>());
-    auto object = std::make_unique<btCollisionObject>();
-    object->setCollisionShape(shapes_.back().get());
-    object->setCollisionFlags(object->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |
-                              btCollisionObject::CF_NO_CONTACT_RESPONSE);
-    object->setUserPointer(this);
-    object->setUserIndex(static_cast<int>(objects_.size()));
-    object->setUserIndex2(kKinematicRopeTag);
-    object->getWorldTransform().setIdentity();
-    objects_.push_back(std::move(object));
-    // Its box is set below before the world sees it.
-  }
-
-  // Each box covers the capsule before and after this substep's move, padded by the radius, the
-  // speculative margin and the curve's bulge over the chord.
+  // The compound follows the count (adaptivity adds and removes spans). Each leaf covers the capsule
+  // before and after this substep's move, padded by the radius, the speculative margin and the
+  // curve's bulge over the chord.
+  proxies_.rebuild(ends_, axis_);
   report_.oversizedBoxes = 0;
   for (std::size_t i = 0; i < count; ++i) {
+    const int child = static_cast<int>(i);
+    proxies_.placeCapsule(child);
     btVector3 lo = axis_[i], hi = axis_[i];
     for (const btVector3* p : {&axis_[i + 1], &previousAxis_[i], &previousAxis_[i + 1]}) {
       lo.setMin(*p);
@@ -364,24 +319,9 @@ void KinematicRope::rebuildCapsules(bool swept) {
     const btScalar pad = static_cast<btScalar>(settings_.radius + settings_.speculativeMargin) + bulge_[i];
     lo -= btVector3(pad, pad, pad);
     hi += btVector3(pad, pad, pad);
-    const btVector3 diagonal = hi - lo;
-    const double diagonal2 = static_cast<double>(diagonal.length2());
-    btCollisionObject& object = *objects_[i];
-    const bool fresh = object.getBroadphaseHandle() == nullptr;
-    if (!std::isfinite(diagonal2) || diagonal2 >= kBulletAabbLimit2) {
-      ++report_.oversizedBoxes;
-      if (!fresh) continue;  // keep the previous box: Bullet would take the object out of the simulation
-      lo = hi = axis_[i];    // a new object gets at least its own end point
-    }
-    shapes_[i]->setHalfExtents((hi - lo) * btScalar(0.5));
-    object.getWorldTransform().setOrigin((lo + hi) * btScalar(0.5));
-    if (world_ == nullptr) continue;
-    if (fresh) {
-      world_->addCollisionObject(&object, settings_.collisionGroup, settings_.collisionMask);
-    } else {
-      world_->updateSingleAabb(&object);
-    }
+    if (!proxies_.fitLeaf(child, lo, hi)) ++report_.oversizedBoxes;  // keeps its previous leaf
   }
+  if (!proxies_.fitObjectBox()) report_.oversizedBoxes = static_cast<int>(count);  // keeps its previous box
 }
 
 void KinematicRope::findCandidates() {

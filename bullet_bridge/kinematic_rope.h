@@ -10,22 +10,25 @@
 //   dynamicsWorld.stepSimulation(1.0 / 60, 4, 1.0 / 240);  // the rope moves inside each substep
 //   hose.removeFromWorld();                                 // also done by the destructor
 //
-// Its collision geometry is a chain of capsules over its spline (capsulesPerSpan per knot span),
-// registered in Bullet's broadphase as objects with a swept box (the capsule at the start and the end
-// of the substep, padded) and a shape for which Bullet runs no narrowphase; they carry
-// CF_NO_CONTACT_RESPONSE, so neither Bullet's solver nor the dynamic ropes' RopeWorld react to them
-// (their userIndex2 is kKinematicRopeTag, not the dynamic ropes' tag). After moving, the rope finds
-// the dynamic bodies overlapping its capsules through the broadphase, measures contacts with the
-// bridge's narrowphase (find_contacts.h) and pushes each body by one-way contact impulses, all
+// Its collision geometry is a chain of capsules over its spline (capsulesPerSpan per knot span) in
+// one Bullet collision object, of the same type as a dynamic rope's (capsule_proxies.h): a compound of
+// the capsules whose tree leaves are swept boxes (each capsule at the start and at the end of the
+// substep, padded), one broadphase box for the whole rope. Its userIndex2 is kKinematicRopeTag. It
+// carries CF_NO_CONTACT_RESPONSE and asks Bullet for no pair except with dynamic ropes, so Bullet's
+// solver and narrowphase never act on it; Bullet's own queries (rayTest, contactTest,
+// contactPairTest, convexSweepTest) see its capsules like any compound's, and ropeHit
+// (rope_queries.h) maps such a hit to the rope and the curve parameter s. After moving, the rope
+// finds the dynamic bodies overlapping its capsules through the broadphase, measures contacts with
+// the bridge's narrowphase (find_contacts.h) and pushes each body by one-way contact impulses, all
 // contacts of a body solved together (contact/kinematic_push.h). Nothing acts on the rope: static and
 // kinematic objects, the body it follows and other kinematic ropes are passed through.
 //
 // Dynamic ropes (RopeObject in a RopeWorld of the same world) are pushed one way too: their RopeWorld
-// takes the capsules as moving bodies (find_contacts.h: capsule against capsule; the surface moves at
-// surfaceVelocity), so a dynamic rope gets the same line contact, stick and Coulomb friction as against
-// any kinematic body (friction: the rope's coefficient times the capsule objects' Bullet default 0.5,
-// friction_combination.h), and the kinematic rope feels nothing. The pair obeys both ropes'
-// collision group and mask, as any Bullet pair.
+// takes the kinematic rope's object as a moving body (find_contacts.h: capsule against its capsules;
+// the surface moves at surfaceVelocity), so a dynamic rope gets the same line contact, stick and
+// Coulomb friction as against any kinematic body (friction: the rope's coefficient times the
+// object's Bullet default 0.5, friction_combination.h), and the kinematic rope feels nothing. The
+// pair obeys both ropes' collision group and mask, as any Bullet pair.
 //
 // Bullet's debugDrawWorld() draws the rope's centre line (the capsule axes) through btIDebugDraw.
 //
@@ -38,8 +41,8 @@
 //
 // Lifetime: remove the rope from its world (removeFromWorld, or destroy it) before the Bullet world
 // is destroyed, as for every object a Bullet world holds. If the world is destroyed first anyway,
-// removeFromWorld notices it (Bullet's world destructor clears the broadphase handles of the rope's
-// capsules) and leaves the dead world alone.
+// removeFromWorld notices it (Bullet's world destructor clears the broadphase handle of the rope's
+// object) and leaves the dead world alone.
 
 #include <BulletDynamics/Dynamics/btActionInterface.h>
 #include <BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h>
@@ -53,18 +56,14 @@
 
 #include "bullet_bridge/bullet_precision.h"
 #include "bullet_bridge/capsule.h"
+#include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/contact.h"
 #include "bullet_bridge/contact/kinematic_push.h"
 #include "bullet_bridge/kinematic_rope_settings.h"
 #include "bullet_bridge/rope_warnings.h"
-#include "bullet_bridge/collision_object/swept_box_shape.h"
 #include "rope/tractrix/tractrix_rope.h"
 
 namespace rope::bullet {
-
-// userIndex2 of every kinematic rope capsule ("KRop"); userPointer is the KinematicRope, userIndex
-// the capsule index.
-constexpr int kKinematicRopeTag = 0x4b526f70;
 
 // One push of the last substep.
 struct KinematicContactRecord {
@@ -143,11 +142,13 @@ class KinematicRope {
   btVector3 leadingEnd() const;
 
   // Capsules at the last substep (or at addToWorld), leading end first.
-  int capsuleCount() const { return static_cast<int>(objects_.size()); }
+  int capsuleCount() const { return proxies_.size(); }
   Capsule capsule(int i) const;                              // "i" out of range
   // The curve parameters of capsule i's two ends (its axis runs from C(first) to C(second)).
   std::pair<double, double> capsuleParameters(int i) const;  // "i" out of range
-  const btCollisionObject& capsuleObject(int i) const;       // "i" out of range
+  // The rope's one collision object (compound child i = capsule i) and its capsule chain.
+  const btCollisionObject& collisionObject() const { return proxies_.object(); }
+  const CapsuleProxies& proxies() const { return proxies_; }
   // The kinematic rope a collision object stands in for, or nullptr.
   static KinematicRope* ropeOf(const btCollisionObject& object);
   // Velocity (m/s) of the rope's surface at `point` near capsule i over the last substep: the capsule's
@@ -167,8 +168,6 @@ class KinematicRope {
   void moveAndPush(double h);
   void recoverFromException(const char* message) noexcept;
   bool driverTarget(Vec3& target);       // false: hold (report_.targetFailure says why, if it failed)
-  // True if the capsules were in a world and all lost their broadphase handles (the world was destroyed).
-  bool orphaned() const;
   void rebuildCapsules(bool swept);      // parameters, axis points and boxes from the current curve
   void findCandidates();
   void push(double h);
@@ -196,8 +195,7 @@ class KinematicRope {
   std::vector<btVector3> axis_;           // capsule end points now
   std::vector<btVector3> previousAxis_;   // the same parameters on the previous curve
   std::vector<btScalar> bulge_;           // per capsule: the curve's distance from its chord midpoint
-  std::vector<std::unique_ptr<SweptBoxShape>> shapes_;
-  std::vector<std::unique_ptr<btCollisionObject>> objects_;
+  CapsuleProxies proxies_;  // the collision object: leaves are the capsules' boxes over the last substep
   std::vector<Candidate> candidates_;
   std::vector<Contact> scratch_;
   std::vector<OneWayContact> bodyContacts_;

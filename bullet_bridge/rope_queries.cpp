@@ -100,22 +100,24 @@ class RopeRayCallback : public btBroadphaseRayCallback {
 
   bool process(const btBroadphaseProxy* proxy) override {
     const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+    RayHit hit;
+    const CapsuleProxies* proxies = nullptr;
     if (const KinematicRope* kinematic = KinematicRope::ropeOf(*object)) {
-      processKinematic(*kinematic, object->getUserIndex());
-      return true;
+      hit.kinematicRope = kinematic;
+      proxies = &kinematic->proxies();
+    } else if (const RopeObject* rope = CapsuleProxies::ropeOf(*object); rope != nullptr && world_.contains(*rope)) {
+      hit.rope = rope;
+      proxies = &rope->proxies();
     }
-    const RopeObject* rope = CapsuleProxies::ropeOf(*object);
-    if (rope == nullptr || !world_.contains(*rope)) return true;
+    if (proxies == nullptr || proxies->size() == 0) return true;
     struct Leaves : btDbvt::ICollide {
       void Process(const btDbvtNode* leaf) override { capsules.push_back(leaf->dataAsInt); }
       std::vector<int> capsules;
     } leaves;
-    btDbvt::rayTest(rope->proxies().tree().m_root, from_, to_, leaves);
+    btDbvt::rayTest(proxies->tree().m_root, from_, to_, leaves);
     for (const int index : leaves.capsules) {
-      const CapsuleProxy& capsuleProxy = rope->proxies().proxy(index);
-      RayHit hit;
-      hit.rope = rope;
-      consider(rope->proxies().capsule(index), capsuleProxy.s0, capsuleProxy.s1, hit);
+      const CapsuleProxy& capsuleProxy = proxies->proxy(index);
+      consider(proxies->capsule(index), capsuleProxy.s0, capsuleProxy.s1, hit);
     }
     return true;
   }
@@ -123,18 +125,10 @@ class RopeRayCallback : public btBroadphaseRayCallback {
   std::optional<RayHit> best;
 
  private:
-  // One capsule object of a kinematic rope (each capsule is its own broadphase object).
-  void processKinematic(const KinematicRope& rope, int index) {
-    if (index < 0 || index >= rope.capsuleCount()) return;
-    const auto [s0, s1] = rope.capsuleParameters(index);
-    RayHit hit;
-    hit.kinematicRope = &rope;
-    consider(rope.capsule(index), s0, s1, hit);
-  }
 
   // The exact hit of the ray on a capsule whose axis runs from C(s0) to C(s1), kept if nearest so far;
   // hit names the rope.
-  void consider(const Capsule& capsule, double s0, double s1, RayHit& hit) {
+  void consider(const Capsule& capsule, double s0, double s1, RayHit hit) {
     double lambda = 0.0, t = 0.0;
     if (!rayCapsule(from_, to_ - from_, capsule, lambda, t)) return;
     if (best && !(lambda < best->fraction)) return;
@@ -157,11 +151,11 @@ class RopeAabbCallback : public btBroadphaseAabbCallback {
     const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
     const RopeObject* rope = CapsuleProxies::ropeOf(*object);
     if (rope != nullptr && world_.contains(*rope)) ropes.push_back(rope);
-    if (KinematicRope::ropeOf(*object) != nullptr) kinematicCapsules.push_back(object);
+    if (const KinematicRope* kinematic = KinematicRope::ropeOf(*object)) kinematicRopes.push_back(kinematic);
     return true;
   }
   std::vector<const RopeObject*> ropes;
-  std::vector<const btCollisionObject*> kinematicCapsules;
+  std::vector<const KinematicRope*> kinematicRopes;
 
  private:
   const RopeWorld& world_;
@@ -184,7 +178,8 @@ std::optional<RayHit> rayTest(const RopeWorld& world, const btVector3& from, con
     using ClosestRayResultCallback::ClosestRayResultCallback;
     bool needsCollision(btBroadphaseProxy* proxy) const override {
       const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
-      return CapsuleProxies::ropeOf(*object) == nullptr && ClosestRayResultCallback::needsCollision(proxy);
+      return CapsuleProxies::ropeOf(*object) == nullptr && KinematicRope::ropeOf(*object) == nullptr &&
+             ClosestRayResultCallback::needsCollision(proxy);
     }
   } bodies(from, to);
   world.dynamicsWorld().rayTest(from, to, bodies);
@@ -243,24 +238,25 @@ std::vector<RopeContactHit> contactTest(const RopeWorld& world, const btCollisio
       }
     }
   }
-  // Kinematic rope capsules (one broadphase object each), in the world's object order.
-  std::sort(callback.kinematicCapsules.begin(), callback.kinematicCapsules.end(),
-            [](const btCollisionObject* a, const btCollisionObject* b) {
-              return a->getWorldArrayIndex() < b->getWorldArrayIndex();
+  // Kinematic ropes, in the world's object order, then capsule index.
+  std::sort(callback.kinematicRopes.begin(), callback.kinematicRopes.end(),
+            [](const KinematicRope* a, const KinematicRope* b) {
+              return a->collisionObject().getWorldArrayIndex() < b->collisionObject().getWorldArrayIndex();
             });
-  for (const btCollisionObject* capsuleObject : callback.kinematicCapsules) {
-    const KinematicRope& rope = *KinematicRope::ropeOf(*capsuleObject);
-    const int index = capsuleObject->getUserIndex();
-    if (capsuleObject == &object || index < 0 || index >= rope.capsuleCount()) continue;
-    contacts.clear();
-    findContacts(rope.capsule(index), object, margin, contacts);
-    const auto [s0, s1] = rope.capsuleParameters(index);
-    for (const Contact& contact : contacts) {
-      RopeContactHit hit;
-      hit.kinematicRope = &rope;
-      hit.s = s0 + static_cast<double>(contact.t) * (s1 - s0);
-      hit.contact = contact;
-      hits.push_back(hit);
+  for (const KinematicRope* rope : callback.kinematicRopes) {
+    if (&rope->collisionObject() == &object) continue;
+    rope->proxies().capsulesOverlapping(lo, hi, capsules, stack);
+    for (const int index : capsules) {
+      contacts.clear();
+      findContacts(rope->capsule(index), object, margin, contacts);
+      const auto [s0, s1] = rope->capsuleParameters(index);
+      for (const Contact& contact : contacts) {
+        RopeContactHit hit;
+        hit.kinematicRope = rope;
+        hit.s = s0 + static_cast<double>(contact.t) * (s1 - s0);
+        hit.contact = contact;
+        hits.push_back(hit);
+      }
     }
   }
   return hits;
@@ -270,22 +266,43 @@ std::vector<RopeContactHit> contactTest(const RopeWorld& world, const btCollisio
 
 namespace rope::bullet {
 
-std::optional<RopeHitLocation> ropeHit(const btCollisionObject& object, int childIndex, const btVector3& point) {
-  const RopeObject* rope = CapsuleProxies::ropeOf(object);
-  if (rope == nullptr) return std::nullopt;
-  requireFinitePoint("point", point);
-  if (childIndex < 0 || childIndex >= rope->proxies().size()) {
-    throw InvalidArgument("childIndex", std::to_string(childIndex),
-                          "must name one of the rope's " + std::to_string(rope->proxies().size()) + " capsules");
+namespace {
+
+// The capsule chain of a rope's or a kinematic rope's object, with the location naming the rope.
+const CapsuleProxies* chainOf(const btCollisionObject& object, RopeHitLocation& location) {
+  if (const RopeObject* rope = CapsuleProxies::ropeOf(object)) {
+    location.rope = rope;
+    return &rope->proxies();
   }
-  return RopeHitLocation{rope, childIndex, rope->proxies().parameterNear(childIndex, point)};
+  if (const KinematicRope* rope = KinematicRope::ropeOf(object)) {
+    location.kinematicRope = rope;
+    return &rope->proxies();
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::optional<RopeHitLocation> ropeHit(const btCollisionObject& object, int childIndex, const btVector3& point) {
+  RopeHitLocation location;
+  const CapsuleProxies* proxies = chainOf(object, location);
+  if (proxies == nullptr) return std::nullopt;
+  requireFinitePoint("point", point);
+  if (childIndex < 0 || childIndex >= proxies->size()) {
+    throw InvalidArgument("childIndex", std::to_string(childIndex),
+                          "must name one of the rope's " + std::to_string(proxies->size()) + " capsules");
+  }
+  location.capsule = childIndex;
+  location.s = proxies->parameterNear(childIndex, point);
+  return location;
 }
 
 std::optional<RopeHitLocation> ropeHit(const btCollisionObject& object, const btVector3& point) {
-  const RopeObject* rope = CapsuleProxies::ropeOf(object);
-  if (rope == nullptr) return std::nullopt;
+  RopeHitLocation location;
+  const CapsuleProxies* found = chainOf(object, location);
+  if (found == nullptr) return std::nullopt;
   requireFinitePoint("point", point);
-  const CapsuleProxies& proxies = rope->proxies();
+  const CapsuleProxies& proxies = *found;
   if (proxies.size() == 0) return std::nullopt;
   // The capsule whose surface is nearest to the point (a point on the rope lies in its capsule's
   // leaf; the tree narrows the search to the leaves around it, all capsules if none).
@@ -309,7 +326,9 @@ std::optional<RopeHitLocation> ropeHit(const btCollisionObject& object, const bt
       best = i;
     }
   }
-  return RopeHitLocation{rope, best, proxies.parameterNear(best, point)};
+  location.capsule = best;
+  location.s = proxies.parameterNear(best, point);
+  return location;
 }
 
 }  // namespace rope::bullet

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Rope hits of world queries. A rope is one Bullet collision object whose shape is a compound of its
-// capsules (capsule_proxies.h), so Bullet's own btCollisionWorld::rayTest, convexSweepTest,
+// Rope hits of world queries. A rope, dynamic or kinematic, is one Bullet collision object whose shape
+// is a compound of its capsules (capsule_proxies.h), so Bullet's own btCollisionWorld::rayTest, convexSweepTest,
 // contactTest and contactPairTest report hits on ropes like on any compound, filtered by the rope's
 // collisionGroup / collisionMask: ropeHit() below turns such a hit (the object, the child index
 // Bullet reports, the hit point) into the rope and the curve parameter s. The functions after it are
@@ -23,10 +23,11 @@ class KinematicRope;
 class RopeObject;
 class RopeWorld;
 
-// A hit on a rope: which rope, which of its capsules (= the compound child index), and the curve
-// parameter s of the point on the capsule's axis nearest to the hit point.
+// A hit on a rope: which rope (a dynamic or a kinematic one), which of its capsules (= the compound
+// child index), and the curve parameter s of the point on the capsule's axis nearest to the hit point.
 struct RopeHitLocation {
-  const RopeObject* rope = nullptr;
+  const RopeObject* rope = nullptr;              // the dynamic rope hit, or nullptr
+  const KinematicRope* kinematicRope = nullptr;  // the kinematic rope hit, or nullptr
   int capsule = 0;
   double s = 0.0;
 };
@@ -35,8 +36,8 @@ struct RopeHitLocation {
 // reports (LocalRayResult::m_localShapeInfo->m_triangleIndex of a rayTest result,
 // LocalConvexResult::m_localShapeInfo->m_triangleIndex of a convexSweepTest result, the index0 /
 // index1 argument of ContactResultCallback::addSingleResult), point the hit point (world frame).
-// Returns nullopt if object is not a rope's. Throws InvalidArgument naming "point.x" (.y, .z) for a
-// non-finite point or "childIndex" for an index that names no capsule of the rope.
+// Returns nullopt if object is neither a rope's nor a kinematic rope's. Throws InvalidArgument naming
+// "point.x" (.y, .z) for a non-finite point or "childIndex" for an index that names no capsule of the rope.
 std::optional<RopeHitLocation> ropeHit(const btCollisionObject& object, int childIndex, const btVector3& point);
 // The same for a result that carries no child index (ClosestRayResultCallback, ClosestConvexResultCallback):
 // the capsule whose surface is nearest to point.
@@ -53,9 +54,9 @@ struct RayHit {
 };
 
 // Closest rope surface crossed by the segment from -> to (rays starting inside a rope capsule do not
-// hit that capsule): the world's ropes and the kinematic ropes of its Bullet world (KinematicRope,
-// whose capsule objects Bullet's own rayTest does not see). Throws InvalidArgument("from"/"to") for
-// non-finite points.
+// hit that capsule): the world's ropes and the kinematic ropes of its Bullet world (KinematicRope),
+// exact where Bullet's own rayTest is as precise as its convex cast. Throws InvalidArgument("from"/"to")
+// for non-finite points.
 std::optional<RayHit> rayTestRopes(const RopeWorld& world, const btVector3& from, const btVector3& to);
 // Closest hit over the world's bodies (Bullet's closest-hit rayTest) and its ropes.
 std::optional<RayHit> rayTest(const RopeWorld& world, const btVector3& from, const btVector3& to);

@@ -161,7 +161,7 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
       sample.body = body;
       sample.normal = toVec(geometry.contact.normal);
       sample.ropeVelocity = rod.velocity(geometry.s);
-      sample.bodyVelocity = pointVelocity(object, geometry.contact.pointOnBody);
+      sample.bodyVelocity = pointVelocity(object, geometry.contact.pointOnBody, geometry.contact.childIndex);
       // Friction state: the stored anchor (interpolated along the curve), or a new one here.
       const Vec3 slip = tangential(sample.ropeVelocity - sample.bodyVelocity, sample.normal);
       btVector3 anchor;

@@ -24,10 +24,10 @@ btRigidBody* dynamicBody(const btCollisionObject& object) {
   return body;
 }
 
-Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point) {
+Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point, int childIndex) {
   if (const KinematicRope* rope = KinematicRope::ropeOf(object)) {
-    const int capsule = object.getUserIndex();
-    return capsule >= 0 && capsule < rope->capsuleCount() ? toVec(rope->surfaceVelocity(capsule, point)) : Vec3::Zero();
+    return childIndex >= 0 && childIndex < rope->capsuleCount() ? toVec(rope->surfaceVelocity(childIndex, point))
+                                                                : Vec3::Zero();
   }
   const btRigidBody* body = btRigidBody::upcast(&object);
   if (body == nullptr) return Vec3::Zero();

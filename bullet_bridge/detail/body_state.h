@@ -21,9 +21,10 @@ bool bodyStateFinite(const btRigidBody& body);
 // and for collision objects that are not rigid bodies.
 btRigidBody* dynamicBody(const btCollisionObject& object);
 
-// Velocity of the body's material point at `point` (world frame), m/s; zero for a collision object
-// that is not a rigid body.
-Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point);
+// Velocity of the body's material point at `point` (world frame), m/s; for a kinematic rope's object,
+// its surface's at `point` near capsule childIndex (Contact::childIndex); zero for any other
+// collision object that is not a rigid body.
+Vec3 pointVelocity(const btCollisionObject& object, const btVector3& point, int childIndex);
 
 // Acceleration of a dynamic body's material point at `arm` from its centre of mass (world frame) that
 // the forces and torques applied to the body for this step give it, m/s^2: a = F/m + (I^-1 tau) x r,

@@ -219,7 +219,7 @@ TEST(KinematicRope, ScriptedPathIsFollowedAtTheSimulatedTime) {
   EXPECT_TRUE(bitwiseEqual(rope.tractrix().controlPoints(), held));
 }
 
-TEST(KinematicRope, CapsulesFollowTheAdaptiveSplineInTheBroadphase) {
+TEST(KinematicRope, CapsulesFollowTheAdaptiveSplineInOneCollisionObject) {
   World w;
   const int bodiesBefore = w.world.getNumCollisionObjects();
   KinematicRope rope(straightRope());
@@ -229,25 +229,40 @@ TEST(KinematicRope, CapsulesFollowTheAdaptiveSplineInTheBroadphase) {
     return btVector3(static_cast<btScalar>(0.4 * std::sin(3.0 * t)), 0, static_cast<btScalar>(0.4 * (1.0 - std::cos(3.0 * t))));
   });
   int minCount = rope.capsuleCount(), maxCount = rope.capsuleCount();
+  const btCollisionObject& object = rope.collisionObject();
   for (int i = 0; i < 480; ++i) {
     w.step(1);
     const int count = rope.capsuleCount();
     minCount = std::min(minCount, count);
     maxCount = std::max(maxCount, count);
-    ASSERT_EQ(w.world.getNumCollisionObjects(), bodiesBefore + count) << "substep " << i;
+    // One broadphase object for the whole rope, whatever the capsule count.
+    ASSERT_EQ(w.world.getNumCollisionObjects(), bodiesBefore + 1) << "substep " << i;
     ASSERT_EQ(count, 4 * (rope.tractrix().controlPointCount() - 3));  // 4 per span, cubic
-    // Each capsule is in the broadphase with a box that contains it, and the capsules join up.
+    ASSERT_NE(object.getBroadphaseHandle(), nullptr);
+    ASSERT_EQ(KinematicRope::ropeOf(object), &rope);
+    ASSERT_EQ(CapsuleProxies::ropeOf(object), nullptr);  // not a dynamic rope
+    ASSERT_FALSE(object.hasContactResponse());
+    const auto& compound = static_cast<const btCompoundShape&>(*object.getCollisionShape());
+    ASSERT_EQ(compound.getNumChildShapes(), count);
+    const btVector3& lo = object.getBroadphaseHandle()->m_aabbMin;
+    const btVector3& hi = object.getBroadphaseHandle()->m_aabbMax;
+    // Each capsule is compound child c (a capsule shape on its axis, as Bullet's queries see it),
+    // inside its tree leaf and the object's box, and the capsules join up.
     for (int c = 0; c < count; ++c) {
-      const btCollisionObject& object = rope.capsuleObject(c);
-      ASSERT_NE(object.getBroadphaseHandle(), nullptr);
-      ASSERT_EQ(KinematicRope::ropeOf(object), &rope);
-      ASSERT_EQ(object.getUserIndex(), c);
-      ASSERT_TRUE(object.hasContactResponse() == false);
       const Capsule capsule = rope.capsule(c);
-      const btVector3& lo = object.getBroadphaseHandle()->m_aabbMin;
-      const btVector3& hi = object.getBroadphaseHandle()->m_aabbMax;
+      const auto* child = static_cast<const btCapsuleShape*>(compound.getChildShape(c));
+      ASSERT_EQ(child->getShapeType(), CAPSULE_SHAPE_PROXYTYPE);
+      ASSERT_EQ(child->getRadius(), capsule.radius);
+      const btTransform& placed = compound.getChildTransform(c);
+      const btVector3 upAxis = placed.getBasis().getColumn(1) * child->getHalfHeight();
+      const btVector3 ends[2] = {placed.getOrigin() - upAxis, placed.getOrigin() + upAxis};
+      ASSERT_LT((ends[0] - capsule.a).length(), 1e-12);
+      ASSERT_LT((ends[1] - capsule.b).length(), 1e-12);
+      const btDbvtVolume& leaf = const_cast<btCompoundShape&>(compound).getChildList()[c].m_node->volume;
       for (const btVector3& p : {capsule.a, capsule.b}) {
         for (int k = 0; k < 3; ++k) {
+          ASSERT_LE(leaf.Mins()[k], p[k] - capsule.radius);
+          ASSERT_GE(leaf.Maxs()[k], p[k] + capsule.radius);
           ASSERT_LE(lo[k], p[k] - capsule.radius);
           ASSERT_GE(hi[k], p[k] + capsule.radius);
         }
@@ -283,38 +298,111 @@ TEST(KinematicRope, CapsulesFollowTheAdaptiveSplineInTheBroadphase) {
   EXPECT_TRUE(bitwiseEqual(rope.tractrix().controlPoints(), after));
 }
 
-TEST(KinematicRope, PairCacheSeesTheCapsulesAndBulletsSolverIgnoresThem) {
+TEST(KinematicRope, BulletPairsTheRopeButMakesNoContactAndItsQueriesSeeTheCapsules) {
   World w;
-  // A free box resting across the rope (no gravity): Bullet pairs it with the capsules' boxes.
+  RopeWorld ropes(w.world);  // for rayTestRopes; it routes no pair of a kinematic rope's
+  // A free box resting across the rope (no gravity): Bullet pairs it with the rope's object.
   btRigidBody* box = w.box(btVector3(btScalar(0.05), btScalar(0.05), btScalar(0.05)),
                            btVector3(btScalar(0.5), btScalar(0.5), btScalar(-0.5)), 1.0);
   KinematicRope rope(straightRope());
   rope.addToWorld(w.world);
   w.step(2);
   EXPECT_EQ(box->getLinearVelocity(), btVector3(0, 0, 0));  // far away: untouched
-  // Move the box onto the rope: the next collision detection pairs it with capsules, Bullet's solver
-  // makes no manifold for them, and the rope pushes the box out.
+  // Move the box onto the rope: the next collision detection pairs it with the rope's object,
+  // Bullet's dispatcher makes no algorithm or manifold for the pair, and the rope pushes the box out.
   btTransform onRope = box->getWorldTransform();
   onRope.setOrigin(btVector3(btScalar(0.0), btScalar(0.03), btScalar(-0.5)));
   box->setWorldTransform(onRope);
   w.step(1);
-  int pairs = 0;
+  int pairs = 0, algorithms = 0;
   btBroadphasePairArray& array = w.world.getPairCache()->getOverlappingPairArray();
   for (int i = 0; i < array.size(); ++i) {
     const auto* a = static_cast<const btCollisionObject*>(array[i].m_pProxy0->m_clientObject);
     const auto* b = static_cast<const btCollisionObject*>(array[i].m_pProxy1->m_clientObject);
-    if ((KinematicRope::ropeOf(*a) == &rope && b == box) || (KinematicRope::ropeOf(*b) == &rope && a == box)) ++pairs;
+    if ((KinematicRope::ropeOf(*a) == &rope && b == box) || (KinematicRope::ropeOf(*b) == &rope && a == box)) {
+      ++pairs;
+      if (array[i].m_algorithm != nullptr) ++algorithms;
+    }
   }
-  EXPECT_GE(pairs, 1);
-  int manifoldPoints = 0;
-  for (int i = 0; i < w.dispatcher.getNumManifolds(); ++i) manifoldPoints += w.dispatcher.getManifoldByIndexInternal(i)->getNumContacts();
-  EXPECT_EQ(manifoldPoints, 0);
+  EXPECT_EQ(pairs, 1);
+  EXPECT_EQ(algorithms, 0);
+  EXPECT_EQ(w.dispatcher.getNumManifolds(), 0);
   EXPECT_FALSE(rope.lastStep().contacts.empty());
   EXPECT_GT(box->getLinearVelocity().y(), 0.0);  // pushed up, out of the rope
-  // Bullet's own ray test does not report the proxies (they have no narrowphase), it reports the box.
-  btCollisionWorld::AllHitsRayResultCallback rays(btVector3(0, 1, btScalar(-0.5)), btVector3(0, -1, btScalar(-0.5)));
-  w.world.rayTest(rays.m_rayFromWorld, rays.m_rayToWorld, rays);
-  for (int i = 0; i < rays.m_collisionObjects.size(); ++i) EXPECT_EQ(rays.m_collisionObjects[i], box);
+  // Bullet's own ray test reports the box and the rope's capsule surface (at the precision of its
+  // convex cast); ropeHit names the kinematic rope and s, and rayTestRopes has the exact hit.
+  const btVector3 from(0, 1, btScalar(-0.5)), to(0, -1, btScalar(-0.5));
+  btCollisionWorld::AllHitsRayResultCallback rays(from, to);
+  w.world.rayTest(from, to, rays);
+  // (A ray through the joint of two capsules hits both: AllHits reports each compound child.)
+  int boxHits = 0, ropeHits = 0;
+  for (int i = 0; i < rays.m_collisionObjects.size(); ++i) {
+    if (rays.m_collisionObjects[i] == box) {
+      ++boxHits;
+      continue;
+    }
+    ++ropeHits;
+    const std::optional<RopeHitLocation> hit = ropeHit(*rays.m_collisionObjects[i], rays.m_hitPointWorld[i]);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_EQ(hit->kinematicRope, &rope);
+    EXPECT_EQ(hit->rope, nullptr);
+    const std::optional<RayHit> exact = rayTestRopes(ropes, from, to);
+    ASSERT_TRUE(exact.has_value());
+    EXPECT_EQ(exact->kinematicRope, &rope);
+    EXPECT_LT((rays.m_hitPointWorld[i] - exact->point).length(), 1e-3);
+    EXPECT_NEAR(hit->s, exact->s, 1e-3);
+  }
+  EXPECT_EQ(boxHits, 1);
+  EXPECT_GE(ropeHits, 1);
+
+  // Bullet's contactTest and convexSweepTest with a 2 cm ball: the rope's object with the capsule's
+  // child index, ropeHit naming the kinematic rope; the ball's contact on the capsule surface.
+  const Capsule middle = rope.capsule(rope.capsuleCount() / 2);
+  const btVector3 axisPoint = (middle.a + middle.b) * btScalar(0.5);
+  btSphereShape ball(btScalar(0.02));
+  btCollisionObject probe;
+  probe.setCollisionShape(&ball);
+  probe.getWorldTransform().setIdentity();
+  probe.getWorldTransform().setOrigin(axisPoint + btVector3(btScalar(0.025), 0, 0));  // 5 mm into the rope
+  struct Contacts : btCollisionWorld::ContactResultCallback {
+    const KinematicRope* rope = nullptr;
+    int found = 0;
+    double deepest = 0.0;
+    btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper* a, int, int indexA,
+                             const btCollisionObjectWrapper* b, int, int indexB) override {
+      const bool first = KinematicRope::ropeOf(*a->getCollisionObject()) != nullptr;
+      const btCollisionObject& object = *(first ? a : b)->getCollisionObject();
+      if (KinematicRope::ropeOf(object) == nullptr) return 0;  // the box
+      const std::optional<RopeHitLocation> hit =
+          ropeHit(object, first ? indexA : indexB, first ? point.getPositionWorldOnA() : point.getPositionWorldOnB());
+      if (hit && hit->kinematicRope == rope) ++found;
+      deepest = std::min(deepest, static_cast<double>(point.getDistance()));
+      return 0;
+    }
+  } contacts;
+  contacts.rope = &rope;
+  w.world.contactTest(&probe, contacts);
+  EXPECT_GE(contacts.found, 1);
+  EXPECT_NEAR(contacts.deepest, -0.005, 1e-4);  // Bullet's capsule-sphere contact: exact up to its margin
+  struct Sweep : btCollisionWorld::ClosestConvexResultCallback {
+    using ClosestConvexResultCallback::ClosestConvexResultCallback;
+    bool needsCollision(btBroadphaseProxy* proxy) const override {
+      return KinematicRope::ropeOf(*static_cast<const btCollisionObject*>(proxy->m_clientObject)) != nullptr &&
+             ClosestConvexResultCallback::needsCollision(proxy);
+    }
+  };
+  btTransform start, end;
+  start.setIdentity();
+  end.setIdentity();
+  start.setOrigin(axisPoint + btVector3(btScalar(0.3), 0, 0));
+  end.setOrigin(axisPoint - btVector3(btScalar(0.3), 0, 0));
+  Sweep sweep(start.getOrigin(), end.getOrigin());
+  w.world.convexSweepTest(&ball, start, end, sweep);
+  ASSERT_TRUE(sweep.hasHit());
+  EXPECT_EQ(KinematicRope::ropeOf(*sweep.m_hitCollisionObject), &rope);
+  // The ball first touches the rope when its centre is radius + 2 cm from the axis.
+  const double touch = (0.3 - (middle.radius + 0.02)) / 0.6;
+  EXPECT_NEAR(static_cast<double>(sweep.m_closestHitFraction), touch, 1e-3);
 }
 
 TEST(KinematicRope, SweepPushesADynamicBoxOutOneWay) {
@@ -664,7 +752,6 @@ TEST(KinematicRope, BadInputThrowsNamingTheParameterAndChangesNothing) {
   expectThrowNaming("target.z", [&] { rope.setTarget(btVector3(0, 0, static_cast<btScalar>(1e200))); });
   expectThrowNaming("path", [&] { rope.followPath(std::function<btVector3(double)>()); });
   expectThrowNaming("i", [&] { rope.capsule(-1); });
-  expectThrowNaming("i", [&] { rope.capsuleObject(rope.capsuleCount()); });
   expectThrowNaming("i", [&] { rope.capsuleParameters(rope.capsuleCount()); });
   expectThrowNaming("i", [&] { rope.surfaceVelocity(-1, btVector3(0, 0, 0)); });
   expectThrowNaming("point.z", [&] { rope.surfaceVelocity(0, btVector3(0, 0, static_cast<btScalar>(nan))); });

@@ -405,6 +405,48 @@ TEST(KinematicRope, BulletPairsTheRopeButMakesNoContactAndItsQueriesSeeTheCapsul
   EXPECT_NEAR(static_cast<double>(sweep.m_closestHitFraction), touch, 1e-3);
 }
 
+// Bullet's queries filter the rope's object by its collisionGroup like any object's; adding and
+// removing the rope (and dynamic ropes next to it) leaves Bullet's object count and pair cache as
+// they were.
+TEST(KinematicRope, QueriesObeyItsFilterAndRemovingItRestoresBulletsPairs) {
+  World w;
+  RopeWorld ropes(w.world);
+  w.box(btVector3(btScalar(0.05), btScalar(0.05), btScalar(0.05)), btVector3(0, btScalar(0.08), btScalar(-0.3)), 1.0);
+  w.box(btVector3(btScalar(0.05), btScalar(0.05), btScalar(0.05)), btVector3(0, btScalar(0.08), btScalar(-0.35)), 1.0);
+  w.step(1);
+  const int objectsBefore = w.world.getNumCollisionObjects();
+  const int pairsBefore = w.world.getPairCache()->getNumOverlappingPairs();
+  {
+    KinematicRopeSettings settings;
+    settings.collisionGroup = 1 << 12;
+    KinematicRope rope(straightRope(), settings);
+    rope.addToWorld(w.world);
+    RopeObject cable(Rod::fromSegment(RodSettings{}, Vec3(-0.5, 0.03, -0.6), Vec3(0.5, 0.03, -0.6)));
+    ropes.addRope(cable);
+    w.step(2);
+    EXPECT_EQ(w.world.getNumCollisionObjects(), objectsBefore + 2);
+    EXPECT_GT(w.world.getPairCache()->getNumOverlappingPairs(), pairsBefore);
+    const btVector3 from(0, 1, btScalar(-0.8)), to(0, -1, btScalar(-0.8));
+    for (const bool masked : {false, true}) {
+      btCollisionWorld::ClosestRayResultCallback ray(from, to);
+      if (masked) ray.m_collisionFilterMask = ~(1 << 12);
+      w.world.rayTest(from, to, ray);
+      if (masked) {
+        EXPECT_FALSE(ray.hasHit());
+      } else {
+        ASSERT_TRUE(ray.hasHit());
+        EXPECT_EQ(KinematicRope::ropeOf(*ray.m_collisionObject), &rope);
+      }
+    }
+    ropes.removeRope(cable);
+    rope.removeFromWorld();
+  }
+  EXPECT_EQ(w.world.getNumCollisionObjects(), objectsBefore);
+  EXPECT_EQ(w.world.getPairCache()->getNumOverlappingPairs(), pairsBefore);
+  w.step(1);
+  EXPECT_EQ(w.world.getPairCache()->getNumOverlappingPairs(), pairsBefore);
+}
+
 TEST(KinematicRope, SweepPushesADynamicBoxOutOneWay) {
   const SweepRun bare = runSweep(false, false);
   const SweepRun pushed = runSweep(true, false);

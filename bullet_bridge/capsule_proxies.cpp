@@ -54,17 +54,7 @@ CapsuleProxies::CapsuleProxies(RopeObject& owner, int capsulesPerSpan, double ra
       radius_(static_cast<btScalar>(radius)),
       shape_(std::make_unique<RopeShape>()),
       object_(std::make_unique<btCollisionObject>()) {
-  object_->setCollisionShape(shape_.get());
-  object_->getWorldTransform().setIdentity();
-  // Drawn by the RopeWorld's debug drawer (rope_debug_draw.h), not a second time by Bullet's.
-  object_->setCollisionFlags(object_->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |
-                             btCollisionObject::CF_NO_CONTACT_RESPONSE |
-                             btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT);
-  object_->setUserPointer(&owner);
-  object_->setUserIndex2(kRopeCapsuleTag);
-  // Always active, so Bullet's dispatcher hands every broadphase pair of the rope (against sleeping
-  // and static bodies too) to the rope's collision algorithm (rope_dispatch.h).
-  object_->setActivationState(DISABLE_DEACTIVATION);
+  configureObject(&owner, kRopeCapsuleTag);
 }
 
 CapsuleProxies::CapsuleProxies(void* owner, int tag, double radius)
@@ -72,15 +62,22 @@ CapsuleProxies::CapsuleProxies(void* owner, int tag, double radius)
       radius_(static_cast<btScalar>(radius)),
       shape_(std::make_unique<RopeShape>()),
       object_(std::make_unique<PairsWithRopesOnly>()) {
+  configureObject(owner, tag);
+}
+
+void CapsuleProxies::configureObject(void* owner, int tag) {
   object_->setCollisionShape(shape_.get());
   object_->getWorldTransform().setIdentity();
-  // The kinematic rope draws its centre line itself (its action's debugDraw).
+  // Drawn by the RopeWorld's debug drawer (rope_debug_draw.h) or by the kinematic rope's action, not
+  // a second time by Bullet's.
   object_->setCollisionFlags(object_->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT |
                              btCollisionObject::CF_NO_CONTACT_RESPONSE |
                              btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT);
   object_->setUserPointer(owner);
   object_->setUserIndex2(tag);
-  // Active, so that Bullet hands its pairs with (always active) dynamic ropes to their RopeWorld.
+  // Always active, so Bullet's dispatcher hands every broadphase pair of a dynamic rope (against
+  // sleeping and static bodies too) to the rope's collision algorithm (rope_dispatch.h), and those of
+  // a kinematic rope with (always active) dynamic ropes to their RopeWorld.
   object_->setActivationState(DISABLE_DEACTIVATION);
 }
 

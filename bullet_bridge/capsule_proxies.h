@@ -117,6 +117,7 @@ class CapsuleProxies {
   static RopeObject* ropeOf(const btCollisionObject& object);
 
  private:
+  void configureObject(void* owner, int tag);
   void addCapsule();
   void resize(int count);
 

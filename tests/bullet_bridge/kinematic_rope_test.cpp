@@ -627,7 +627,7 @@ double deepestRopeOverlap(const KinematicRope& rope, const RopeObject& cable) {
 
 TEST(KinematicRope, DynamicRopeFallingOnItLiesOnItAndDoesNotMoveIt) {
   // A dynamic cable dropped across the kinematic rope (held still) lands on it and drapes over it:
-  // its RopeWorld takes the kinematic capsules as a body (one-way), the kinematic rope is unmoved.
+  // its RopeWorld takes the kinematic rope's object as a body (one-way), the kinematic rope is unmoved.
   World w(9.81);
   RopeWorld ropes(w.world);
   RopeObject cable(Rod::fromSegment(cableSettings(), Vec3(-0.3, 0.05, -0.5), Vec3(0.3, 0.05, -0.5)));
@@ -702,9 +702,9 @@ TEST(KinematicRope, SweepThroughADynamicRopeCarriesItAlongWithoutPassingThrough)
 }
 
 TEST(KinematicRope, QueriesHitItsCapsuleSurfaceExactly) {
-  // Bullet's own rayTest passes through a kinematic rope (its capsule objects have no shape Bullet
-  // tests); rope::bullet::rayTestRopes and rayTest hit the capsule in closed form, and contactTest
-  // finds a body touching it.
+  // rope::bullet::rayTestRopes and rayTest hit the capsule in closed form (Bullet's own rayTest hits
+  // it at its convex cast's precision: BulletPairsTheRope... above), and contactTest finds a body
+  // touching it.
   World w;
   RopeWorld ropes(w.world);
   KinematicRope rope(straightRope());  // along -z from the origin, radius 1 cm

@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "bullet_bridge/detail/bullet_math.h"
+#include "rope/common/error.h"
 
 namespace rope::bullet {
 
@@ -110,7 +112,12 @@ void CapsuleProxies::addCapsule() {
   shape_->addChildShape(identity, capsuleShapes_.back().get());
 }
 
+void CapsuleProxies::requireCapsule(int i) const {
+  if (i < 0 || i >= size()) throw InvalidArgument("i", std::to_string(i), "must be in [0, " + std::to_string(size()) + ")");
+}
+
 void CapsuleProxies::placeCapsule(int i) {
+  requireCapsule(i);
   const btVector3& a = axis_[static_cast<std::size_t>(i)];
   const btVector3& b = axis_[static_cast<std::size_t>(i) + 1];
   const btVector3 chord = b - a;
@@ -130,6 +137,10 @@ void CapsuleProxies::rebuild(const Rod& rod) {
 }
 
 void CapsuleProxies::rebuild(const std::vector<double>& ends, const std::vector<btVector3>& axis) {
+  if (ends.size() < 2) throw InvalidArgument("ends", std::to_string(ends.size()) + " ends", "need at least 2 (one capsule)");
+  if (axis.size() != ends.size()) {
+    throw InvalidArgument("axis", std::to_string(axis.size()) + " points", "must have one point per end (" + std::to_string(ends.size()) + ")");
+  }
   ends_ = ends;
   axis_ = axis;
   resize(static_cast<int>(ends_.size()) - 1);
@@ -192,6 +203,7 @@ int CapsuleProxies::updateBoxes(const Rod& rod, double predictionTime, double ma
 }
 
 bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {
+  requireCapsule(i);
   const double d2 = diagonal2(lo, hi);
   // Keep the previous leaf: Bullet would take such an object out of the simulation.
   if (!std::isfinite(d2) || d2 >= kBulletAabbLimit2) return false;

@@ -81,8 +81,9 @@ class CapsuleProxies {
   // Follows the rod's current knots (adds or removes capsules) and evaluates the capsule axes (the
   // compound's children follow in updateBoxes).
   void rebuild(const Rod& rod);
-  // The same from capsule ends computed by the caller (capsuleEnds) and the curve's points at them
-  // (ends.size() >= 2, axis.size() == ends.size()).
+  // The same from capsule ends computed by the caller (capsuleEnds) and the curve's points at them.
+  // Throws InvalidArgument("ends") for fewer than 2 ends, ("axis") unless axis.size() == ends.size(),
+  // and changes nothing then.
   void rebuild(const std::vector<double>& ends, const std::vector<btVector3>& axis);
   // Rebuilds, places the compound's capsule children, then sets each capsule's tree leaf to cover the capsule now and after predictionTime
   // (s) of the rod's current velocities, padded by margin (m), and the object's box to the tree's
@@ -92,7 +93,8 @@ class CapsuleProxies {
   // The parts of updateBoxes, for a caller that computes its own swept boxes: placeCapsule moves
   // compound child i onto capsule i's axis; fitLeaf sets its tree leaf to cover [lo, hi] (false, and
   // the leaf kept, if Bullet would drop such a box); fitObjectBox sets the object's broadphase box to
-  // the tree's root (false, and the box kept, if too large).
+  // the tree's root (false, and the box kept, if too large). placeCapsule and fitLeaf throw
+  // InvalidArgument("i") for an index that names no capsule.
   void placeCapsule(int i);
   bool fitLeaf(int i, const btVector3& lo, const btVector3& hi);
   bool fitObjectBox();
@@ -118,6 +120,7 @@ class CapsuleProxies {
 
  private:
   void configureObject(void* owner, int tag);
+  void requireCapsule(int i) const;
   void addCapsule();
   void resize(int count);
 

@@ -8,9 +8,13 @@
 
 #include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
 
+#include <functional>
+#include <vector>
+
 #include "bullet_bridge/rope_world.h"
 #include "demos/scenes/drape_scene.h"
 #include "demos/scenes/physics_world.h"
+#include "rope/common/error.h"
 
 namespace rope::bullet {
 namespace {
@@ -102,6 +106,34 @@ TEST(CapsuleProxies, HugeBoxesAreReportedNotHandedToBullet) {
   EXPECT_EQ(rope.lastStep().proxyOverflows, rope.proxies().size());
   EXPECT_EQ(physics.ropes().lastReport().ropes.at(0).proxyOverflows, rope.proxies().size());
   EXPECT_NE(rope.collisionObject().getActivationState(), DISABLE_SIMULATION);
+}
+
+// A caller-built chain (the kinematic rope's path) refuses mismatched input naming it, and leaves the
+// chain as it was; capsule indices out of range are refused too.
+TEST(CapsuleProxies, CallerBuiltChainRefusesBadInputAndChangesNothing) {
+  int owner = 0;
+  CapsuleProxies chain(&owner, kKinematicRopeTag, 0.01);
+  const std::vector<double> ends{0.0, 0.5, 1.0};
+  const std::vector<btVector3> axis{btVector3(0, 0, 0), btVector3(0.5, 0, 0), btVector3(1, 0, 0)};
+  chain.rebuild(ends, axis);
+  ASSERT_EQ(chain.size(), 2);
+  const auto expectNaming = [](const char* name, const std::function<void()>& call) {
+    try {
+      call();
+      ADD_FAILURE() << "no exception for " << name;
+    } catch (const InvalidArgument& error) {
+      EXPECT_EQ(error.parameter(), name);
+    }
+  };
+  expectNaming("ends", [&] { chain.rebuild({0.0}, {btVector3(0, 0, 0)}); });
+  expectNaming("axis", [&] { chain.rebuild(ends, {btVector3(0, 0, 0), btVector3(1, 0, 0)}); });
+  expectNaming("i", [&] { chain.placeCapsule(2); });
+  expectNaming("i", [&] { chain.fitLeaf(-1, btVector3(0, 0, 0), btVector3(1, 1, 1)); });
+  EXPECT_EQ(chain.size(), 2);
+  EXPECT_EQ(chain.proxy(1).s0, 0.5);
+  EXPECT_EQ(chain.capsule(1).b, btVector3(1, 0, 0));
+  EXPECT_EQ(chain.object().getUserIndex2(), kKinematicRopeTag);
+  EXPECT_EQ(CapsuleProxies::ropeOf(chain.object()), nullptr);
 }
 
 }  // namespace

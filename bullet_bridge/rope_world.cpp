@@ -347,9 +347,13 @@ void RopeWorld::solveRopeContacts(double h) {
   // Rope-rope and self-contact, coupled into the trials of all ropes at once; pairs in a fixed order
   // (the pair cache's order depends on pointer hashes).
   const auto ropeStart = std::chrono::steady_clock::now();
-  sortCapsulePairs();
   guardedCall(
       [&] {
+        // Distant pairs out first: the tree's leaves are padded for rope-body contact, so in a knot
+        // most of its pairs are neighbours or far apart (rope_rope_contact.h).
+        ropeRopeContacts_.prepare(ropes_, h);
+        ropeRopeContacts_.dropDistantPairs(capsulePairs_);
+        sortCapsulePairs();
         const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
         if (ropeContacts < 0) {
           report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";

@@ -45,18 +45,6 @@ double restArcAt(const Rod& rod, const std::vector<double>& starts, double s) {
   return starts[static_cast<size_t>(j)] + fraction * (starts[static_cast<size_t>(j) + 1] - starts[static_cast<size_t>(j)]);
 }
 
-// Distance between the axis-aligned boxes of two capsule axes, m: a lower bound of the axes' distance.
-double axisBoxGap(const Capsule& a, const Capsule& b) {
-  double gap2 = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const double aLow = std::min(a.a[i], a.b[i]), aHigh = std::max(a.a[i], a.b[i]);
-    const double bLow = std::min(b.a[i], b.b[i]), bHigh = std::max(b.a[i], b.b[i]);
-    const double apart = std::max({0.0, bLow - aHigh, aLow - bHigh});
-    gap2 += apart * apart;
-  }
-  return std::sqrt(gap2);
-}
-
 double parameterAt(const CapsuleProxy& proxy, double t) {
   if (t <= 0.0) return proxy.s0;
   if (t >= 1.0) return proxy.s1;  // exactly the neighbour's s0: shared ends give identical contacts
@@ -77,25 +65,92 @@ ContactLaw pairLaw(const BulletRopeSettings& a, const BulletRopeSettings& b) {
 
 }  // namespace
 
-int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs,
-                            double h, std::vector<RopePairContactRecord>& records) {
-  candidates_.clear();
-  // Per capsule end, once per substep (pairs share capsules many times over): rest arclength and speed.
+void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) {
+  h_ = h;
+  // Per capsule end, once per substep (pairs share capsules many times over): rest arclength and
+  // speed; per capsule, its axis's box.
   restArc_.resize(ropes.size());
   ends_.resize(ropes.size());
+  boxes_.resize(ropes.size());
+  facts_.resize(ropes.size());
   for (size_t r = 0; r < ropes.size(); ++r) {
     const Rod& rod = ropes[r]->rod();
     const CapsuleProxies& proxies = ropes[r]->proxies();
+    const BulletRopeSettings& settings = ropes[r]->settings();
+    facts_[r] = {rod.settings().radius, settings.speculativeMargin,
+                 settings.effectiveSelfContactExclusion(rod.settings().radius), settings.selfContact, proxies.size()};
     buildRestArc(rod, restArc_[r]);
     std::vector<CapsuleEnd>& ends = ends_[r];
+    std::vector<AxisBox>& boxes = boxes_[r];
     ends.clear();
+    boxes.clear();
     if (proxies.size() == 0) continue;  // no pair can name one of its capsules
     ends.resize(static_cast<size_t>(proxies.size()) + 1);
     for (int i = 0; i <= proxies.size(); ++i) {
       const double s = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
       ends[static_cast<size_t>(i)] = {restArcAt(rod, restArc_[r], s), rod.velocity(s).norm()};
     }
+    boxes.resize(static_cast<size_t>(proxies.size()));
+    for (int i = 0; i < proxies.size(); ++i) {
+      const Capsule capsule = proxies.capsule(i);
+      AxisBox& box = boxes[static_cast<size_t>(i)];
+      for (int k = 0; k < 3; ++k) {
+        box.low[k] = std::min(capsule.a[k], capsule.b[k]);
+        box.high[k] = std::max(capsule.a[k], capsule.b[k]);
+      }
+      box.speed = std::max(ends[static_cast<size_t>(i)].speed, ends[static_cast<size_t>(i) + 1].speed);
+    }
   }
+}
+
+double RopeRopeContacts::reach(const RopeCapsulePair& pair) const {
+  const RopeFacts& a = facts_[static_cast<size_t>(pair.ropeA)];
+  const RopeFacts& b = facts_[static_cast<size_t>(pair.ropeB)];
+  // Candidates: gaps that the step can close (both ropes' speeds) plus a fraction of the radii; the
+  // body margin (speculativeMargin, sized for fast ropes against thin bodies) would flood a knot
+  // with distant pairs.
+  const double margin = std::min(std::max(a.margin, b.margin), 0.5 * (a.radius + b.radius));
+  return margin + h_ * (boxes_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)].speed +
+                        boxes_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)].speed);
+}
+
+bool RopeRopeContacts::mayTouch(const RopeCapsulePair& pair) const {
+  const RopeFacts& ropeA = facts_[static_cast<size_t>(pair.ropeA)];
+  const RopeFacts& ropeB = facts_[static_cast<size_t>(pair.ropeB)];
+  const bool self = pair.ropeA == pair.ropeB;
+  if (self && !ropeA.selfContact) return false;
+  if (pair.capsuleA >= ropeA.capsules || pair.capsuleB >= ropeB.capsules) return false;
+  if (self) {
+    // Pairs whose every point pair is excluded (neighbouring capsules, which always overlap).
+    const CapsuleEnd* endsA = &ends_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)];
+    const CapsuleEnd* endsB = &ends_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)];
+    if (std::max(std::abs(endsB[1].arc - endsA[0].arc), std::abs(endsA[1].arc - endsB[0].arc)) < ropeA.exclusion)
+      return false;
+  }
+  // The axes' boxes apart by more than the radii and the reach: the axes are too (most pairs the tree
+  // reports in a knot, whose leaves are padded for rope-body contact). A lower bound of the distance,
+  // so the exact test in solve decides every pair it lets through, with a relative slack for its
+  // rounding.
+  const AxisBox& a = boxes_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)];
+  const AxisBox& b = boxes_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)];
+  double gap2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double apart = std::max({0.0, b.low[k] - a.high[k], a.low[k] - b.high[k]});
+    gap2 += apart * apart;
+  }
+  // Compared squared (no square root per pair): the slack covers the rounding either way.
+  const double limit = (ropeA.radius + ropeB.radius + reach(pair)) * (1.0 + 1e-9);
+  return !(gap2 > limit * limit);
+}
+
+void RopeRopeContacts::dropDistantPairs(std::vector<RopeCapsulePair>& pairs) const {
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [&](const RopeCapsulePair& pair) { return !mayTouch(pair); }),
+              pairs.end());
+}
+
+int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs,
+                            double h, std::vector<RopePairContactRecord>& records) {
+  candidates_.clear();
 
   // ---- narrowphase, at the ropes' state before the step ----
   for (const RopeCapsulePair& pair : pairs) {
@@ -104,14 +159,14 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     const Rod& rodA = ropeA.rod();
     const Rod& rodB = ropeB.rod();
     const bool self = pair.ropeA == pair.ropeB;
-    if (self && !ropeA.settings().selfContact) continue;
-    if (pair.capsuleA >= ropeA.proxies().size() || pair.capsuleB >= ropeB.proxies().size()) continue;
     const CapsuleProxy& proxyA = ropeA.proxies().proxy(pair.capsuleA);
     const CapsuleProxy& proxyB = ropeB.proxies().proxy(pair.capsuleB);
     const double exclusion = ropeA.settings().effectiveSelfContactExclusion(rodA.settings().radius);
     const std::vector<double>& arcA = restArc_[static_cast<size_t>(pair.ropeA)];
     const CapsuleEnd* endsA = &ends_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)];
     const CapsuleEnd* endsB = &ends_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)];
+    // mayTouch (dropDistantPairs) has kept only pairs with both capsules present, a self-pair with
+    // some point pair outside the exclusion, and axes' boxes within reach.
     // Two pieces cut from one rope count as one rope near their cut (their ends start overlapping).
     const RopeObject::CutPartner* cut = nullptr;
     if (!self) {
@@ -124,10 +179,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
       cutArcA = restArcAt(rodA, arcA, cut->ownEnd);
       cutArcB = restArcAt(rodB, restArc_[static_cast<size_t>(pair.ropeB)], cut->partnerEnd);
     }
-    if (self) {
-      // Skip pairs whose every point pair is excluded (neighbouring capsules, which always overlap).
-      if (std::max(std::abs(endsB[1].arc - endsA[0].arc), std::abs(endsA[1].arc - endsB[0].arc)) < exclusion) continue;
-    } else if (cut != nullptr) {
+    if (cut != nullptr) {
       const double farthest = std::max(std::abs(endsA[0].arc - cutArcA), std::abs(endsA[1].arc - cutArcA)) +
                               std::max(std::abs(endsB[0].arc - cutArcB), std::abs(endsB[1].arc - cutArcB));
       if (farthest < exclusion) continue;
@@ -135,16 +187,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     const Capsule capsuleA = ropeA.proxies().capsule(pair.capsuleA);
     const Capsule capsuleB = ropeB.proxies().capsule(pair.capsuleB);
     const double radii = rodA.settings().radius + rodB.settings().radius;
-    // Candidates: gaps that the step can close (both ropes' speeds) plus a fraction of the radii; the
-    // body margin (speculativeMargin, sized for fast ropes against thin bodies) would flood a knot
-    // with distant pairs.
-    const double margin = std::min(std::max(ropeA.settings().speculativeMargin, ropeB.settings().speculativeMargin),
-                                   0.5 * radii);
-    const double reach = margin + h * (std::max(endsA[0].speed, endsA[1].speed) + std::max(endsB[0].speed, endsB[1].speed));
-    // The axes' boxes apart by more than that: the axes are too (most pairs the tree reports in a
-    // knot, whose leaves are padded for rope-body contact). A lower bound of the distance, so the
-    // exact test below decides every pair it lets through, with a relative slack for its rounding.
-    if (axisBoxGap(capsuleA, capsuleB) > (radii + reach) * (1.0 + 1e-9)) continue;
+    const double reach = this->reach(pair);
     const SegmentPairClosest closest = segmentSegmentClosest(capsuleA.a, capsuleA.b, capsuleB.a, capsuleB.b);
     if (!(closest.distance - radii < reach)) continue;
 

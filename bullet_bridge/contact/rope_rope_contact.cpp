@@ -360,7 +360,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
       Candidate& candidate = candidates_[static_cast<size_t>(coupled_[k])];
       if (!candidate.active) {
         // Switched on when the tubes would end the step overlapping.
-        const Vec3 w = candidate.relativeVelocity + solver_.relativeChange(static_cast<int>(k), impulses_);
+        const Vec3 w = candidate.relativeVelocity + solver_.solvedRelativeChange(static_cast<int>(k));
         if (!(candidate.distance + h * candidate.normal.dot(w) < 0.0)) continue;
         candidate.active = true;
       } else {
@@ -396,7 +396,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     RopePairContactRecord& record = records[static_cast<size_t>(candidate.record)];
     record.active = true;
     record.force = toBullet(impulses_[k] / h);
-    const Vec3 slip = candidate.relativeVelocity + solver_.relativeChange(static_cast<int>(k), impulses_);
+    const Vec3 slip = candidate.relativeVelocity + solver_.solvedRelativeChange(static_cast<int>(k));
     record.sticking = (slip - candidate.normal * candidate.normal.dot(slip)).norm() < candidate.law.frictionVelocity;
     ++active;
   }

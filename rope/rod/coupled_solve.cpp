@@ -137,6 +137,7 @@ void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<Poin
   acting_.clear();
   zColumn_.assign(m, -1);
   zColumns_ = 0;
+  deltaValid_ = false;
 }
 
 bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vector<Vec3>& impulses) {
@@ -146,6 +147,8 @@ bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vect
   }
   impulses.assign(m, Vec3::Zero());
   acting_.clear();
+  deltaImpulses_.assign(m, Vec3::Zero());  // solvedRelativeChange's impulses: zero unless this solve succeeds
+  deltaValid_ = false;
   for (size_t k = 0; k < m; ++k) {
     if (!laws[k].admittance.allFinite() || !laws[k].impulse.allFinite()) return false;
     if (laws[k].admittance.isZero(0.0) && laws[k].impulse.isZero(0.0)) continue;  // p_k = 0 exactly
@@ -192,6 +195,7 @@ bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vect
   Eigen::VectorXd p = impulse_;
   for (int i = 0; i < a; ++i) p.segment<3>(3 * i) -= roots_[static_cast<size_t>(i)] * u.segment<3>(3 * i);
   for (int i = 0; i < a; ++i) impulses[static_cast<size_t>(acting_[static_cast<size_t>(i)])] = p.segment<3>(3 * i);
+  deltaImpulses_ = impulses;
   return true;
 }
 
@@ -200,6 +204,48 @@ Vec3 CoupledSolve::relativeChange(int k, const std::vector<Vec3>& impulses) {
   for (size_t l = 0; l < impulses.size(); ++l) {
     if (impulses[l].isZero(0.0)) continue;
     change += zBlockCached(static_cast<size_t>(k), l) * impulses[l];
+  }
+  return change;
+}
+
+Vec3 CoupledSolve::solvedRelativeChange(int k) {
+  // w_new - w = J_k (dv_trial + P J^T p) = trialChange_k + B_a dv - B_b dv (eq. 37).
+  if (!deltaValid_) computeVelocityChange(deltaImpulses_);
+  return trialChange_[static_cast<size_t>(k)] + velocityChangeAt(pointA_[static_cast<size_t>(k)]) -
+         velocityChangeAt(pointB_[static_cast<size_t>(k)]);
+}
+
+void CoupledSolve::computeVelocityChange(const std::vector<Vec3>& impulses) {
+  velocityChange_.resize(rods_.size());
+  for (size_t r = 0; r < rods_.size(); ++r) {
+    velocityChange_[r].assign(static_cast<size_t>(3 * rods_[r]->controlPointCount()), 0.0);
+  }
+  for (size_t l = 0; l < impulses.size() && l < couplings_.size(); ++l) {
+    if (impulses[l].isZero(0.0)) continue;
+    for (int side = 0; side < 2; ++side) {
+      const int index = side == 0 ? pointA_[l] : pointB_[l];
+      ensureResponse(index);
+      const Point& point = points_[static_cast<size_t>(index)];
+      std::vector<double>& dv = velocityChange_[static_cast<size_t>(point.rod)];
+      const size_t n3 = dv.size();
+      const Vec3 p = side == 0 ? impulses[l] : Vec3(-impulses[l]);
+      for (int axis = 0; axis < 3; ++axis) {
+        const double* column = &point.response[static_cast<size_t>(axis) * n3];
+        const double weight = p[axis];
+        for (size_t j = 0; j < n3; ++j) dv[j] += weight * column[j];
+      }
+    }
+  }
+  deltaValid_ = true;
+}
+
+Vec3 CoupledSolve::velocityChangeAt(int p) const {
+  const Point& point = points_[static_cast<size_t>(p)];
+  const std::vector<double>& dv = velocityChange_[static_cast<size_t>(point.rod)];
+  Vec3 change = Vec3::Zero();
+  for (int i = 0; i < point.count; ++i) {
+    const double* block = &dv[3 * static_cast<size_t>(point.first + i)];
+    change += point.basis[i] * Vec3(block[0], block[1], block[2]);
   }
   return change;
 }

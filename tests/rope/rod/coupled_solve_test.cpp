@@ -107,8 +107,9 @@ TEST(CoupledSolve, ImpulsesSatisfyTheirLawAtTheEndOfTheStep) {
   CoupledSolve solve;
   std::vector<Vec3> impulses;
   ASSERT_TRUE(setup.solve(solve, impulses));
-  std::vector<Vec3> predicted;
+  std::vector<Vec3> predicted, solved;
   for (int k = 0; k < solve.size(); ++k) predicted.push_back(solve.relativeChange(k, impulses));
+  for (int k = 0; k < solve.size(); ++k) solved.push_back(solve.solvedRelativeChange(k));
   solve.apply(impulses);
   const Rod* rods[2] = {&setup.a, &setup.b};
   for (size_t k = 0; k < setup.couplings.size(); ++k) {
@@ -118,6 +119,8 @@ TEST(CoupledSolve, ImpulsesSatisfyTheirLawAtTheEndOfTheStep) {
     // w_new - w measured on the corrected trials ...
     const Vec3 change = (a.trialVelocity(c.sA) - a.velocity(c.sA)) - (b.trialVelocity(c.sB) - b.velocity(c.sB));
     EXPECT_LT((change - predicted[k]).norm(), 1e-11 * (1.0 + change.norm())) << k;
+    // The same prediction through the rods' velocity change (one pass per solve) instead of Z's blocks.
+    EXPECT_LT((change - solved[k]).norm(), 1e-11 * (1.0 + change.norm())) << k;
     // ... is what the law asked for: p = e - W (w_new - w).
     const Vec3 law = setup.laws[k].impulse - setup.laws[k].admittance * change;
     EXPECT_LT((impulses[k] - law).norm(), 1e-12) << k;
@@ -176,6 +179,31 @@ TEST(CoupledSolve, StiffSpringStopsTheRelativeMotion) {
   ASSERT_TRUE(solve.solveImpulses({law}, impulses));
   EXPECT_LT(std::abs(n.dot(solve.relativeChange(0, impulses))), 1e-8 * (1.0 + solve.trialRelativeChange(0).norm()));
   EXPECT_GT(std::abs(n.dot(solve.trialRelativeChange(0))), 1e-3);
+}
+
+// solvedRelativeChange answers for the last solve's impulses: after a second solve with other laws
+// it is that solve's relativeChange, and with no coupling acting it is the trial's own change.
+TEST(CoupledSolve, SolvedRelativeChangeFollowsTheLastSolve) {
+  TwoRods setup;
+  CoupledSolve solve;
+  std::vector<Vec3> impulses;
+  ASSERT_TRUE(setup.solve(solve, impulses));
+  for (int k = 0; k < solve.size(); ++k) {
+    const Vec3 expected = solve.relativeChange(k, impulses);
+    EXPECT_LT((solve.solvedRelativeChange(k) - expected).norm(), 1e-12 * (1.0 + expected.norm())) << k;
+  }
+  std::vector<CouplingLaw> other = setup.laws;
+  other[0] = CouplingLaw{};
+  other[1].admittance *= 3.0;
+  ASSERT_TRUE(solve.solveImpulses(other, impulses));
+  for (int k = 0; k < solve.size(); ++k) {
+    const Vec3 expected = solve.relativeChange(k, impulses);
+    EXPECT_LT((solve.solvedRelativeChange(k) - expected).norm(), 1e-12 * (1.0 + expected.norm())) << k;
+    EXPECT_GT((solve.solvedRelativeChange(k) - solve.trialRelativeChange(k)).norm(), 0.0) << k;
+  }
+  const std::vector<CouplingLaw> none(other.size());
+  ASSERT_TRUE(solve.solveImpulses(none, impulses));
+  for (int k = 0; k < solve.size(); ++k) EXPECT_EQ(solve.solvedRelativeChange(k), solve.trialRelativeChange(k)) << k;
 }
 
 // The three-axis response (one pass over the factor) is bitwise the one-axis response, pins included.

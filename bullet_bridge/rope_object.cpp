@@ -379,6 +379,26 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
 }
 
 void RopeObject::endSubstep(double h) {
+  finishSubstep(h);
+  announceBox();
+}
+
+void RopeObject::announceBox() {
+  // The broadphase update is the last part of the refit (RopeStepRecord::proxySeconds).
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  proxies_->announceObjectBox();
+  lastStep_.proxySeconds += std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+bool RopeObject::finishesAlone() const {
+  for (const PendingSpring& pending : pending_) {
+    if (pending.body != nullptr) return false;
+  }
+  return !bodyContacts_.pushesBodies();
+}
+
+void RopeObject::finishSubstep(double h) {
   requirePositive("h", h);
   using Clock = std::chrono::steady_clock;
   const Clock::time_point commitStart = Clock::now();
@@ -437,7 +457,7 @@ void RopeObject::endSubstep(double h) {
     attachmentLoads_.push_back(record);
   }
   const Clock::time_point proxyStart = Clock::now();
-  lastStep_.proxyOverflows = proxies_->updateBoxes(rod_, h, settings_.speculativeMargin);
+  lastStep_.proxyOverflows = proxies_->updateBoxesDeferred(rod_, h, settings_.speculativeMargin);
   const Clock::time_point end = Clock::now();
   lastStep_.solveSeconds += std::chrono::duration<double>(proxyStart - commitStart).count();
   lastStep_.proxySeconds = std::chrono::duration<double>(end - proxyStart).count();

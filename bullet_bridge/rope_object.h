@@ -194,6 +194,14 @@ class RopeObject {
 
  private:
   friend class RopeWorld;
+  // endSubstep, except that the rope's new box reaches Bullet's broadphase only at announceBox()
+  // (CapsuleProxies::updateBoxesDeferred): the RopeWorld hands the boxes over in world order.
+  void finishSubstep(double h);
+  void announceBox();
+  // Whether finishing this substep (endSubstep) acts on nothing but this rope: no attachment spring
+  // and no contact sample gives a dynamic body an impulse. Such a rope's substep can be finished
+  // before the other ropes' begin without changing what they see.
+  bool finishesAlone() const;
   // Rope-rope contact statistics of the substep (RopeWorld fills them in between the two halves).
   // `near`: the rope had rope-rope or self-contact candidates (active or not) this substep.
   void recordRopeContacts(int active, double maxOverlap, bool near) {

@@ -234,6 +234,13 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
   }
 }
 
+bool BodyContacts::pushesBodies() const {
+  for (const Sample& sample : samples_) {
+    if (sample.body != nullptr) return true;
+  }
+  return false;
+}
+
 void BodyContacts::queue(Rod& rod) const {
   for (const Sample& sample : samples_) {
     if (!sample.active) continue;

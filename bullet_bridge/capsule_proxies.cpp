@@ -9,6 +9,7 @@
 
 #include "bullet_bridge/detail/bullet_math.h"
 #include "rope/common/error.h"
+#include "rope/common/prefetch.h"
 
 namespace rope::bullet {
 
@@ -281,6 +282,15 @@ double CapsuleProxies::parameterNear(int i, const btVector3& point) const {
   t = std::clamp(t, 0.0, 1.0);
   const CapsuleProxy& p = proxy(i);
   return p.s0 + t * (p.s1 - p.s0);
+}
+
+void CapsuleProxies::prefetch() const {
+  prefetchVector(proxies_);
+  prefetchVector(axis_);
+  prefetchVector(ends_);
+  prefetchVector(speeds_);
+  prefetchBytes(object_.get(), sizeof(btCollisionObject));
+  prefetchBytes(shape_.get(), sizeof(RopeShape));
 }
 
 RopeObject* CapsuleProxies::ropeOf(const btCollisionObject& object) {

@@ -124,6 +124,9 @@ class CapsuleProxies {
 
   // The rope a collision object is, or nullptr if it is not a dynamic rope's object.
   static RopeObject* ropeOf(const btCollisionObject& object);
+  // Cache hints (rope/common/prefetch.h) for the capsules, the object and the shape (this object's
+  // own bytes are the caller's to ask for first: RopeObject::prefetchParts).
+  void prefetch() const;
 
  private:
   void configureObject(void* owner, int tag);

@@ -12,6 +12,7 @@
 #include "bullet_bridge/contact/distributed_loads.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
+#include "rope/common/prefetch.h"
 #include "rope/rod/axial_force.h"
 #include "rope/spline/bspline_curve.h"
 
@@ -396,6 +397,25 @@ bool RopeObject::finishesAlone() const {
     if (pending.body != nullptr) return false;
   }
   return !bodyContacts_.pushesBodies();
+}
+
+void RopeObject::prefetchObject() const { prefetchBytes(this, sizeof(*this)); }
+
+void RopeObject::prefetchParts() const { prefetchBytes(proxies_.get(), sizeof(CapsuleProxies)); }
+
+void RopeObject::prefetchState() const {
+  rod_.prefetch();
+  proxies_->prefetch();
+  bodyContacts_.prefetch();
+  prefetchVector(contacts_);
+  prefetchVector(attachments_);
+  prefetchVector(attachmentLoads_);
+}
+
+void RopeObject::prefetchRecords() const {
+  prefetchVector(contacts_);
+  prefetchVector(attachmentLoads_);
+  prefetchBytes(&proxies_->object(), sizeof(btCollisionObject));
 }
 
 void RopeObject::finishSubstep(double h) {

@@ -18,6 +18,7 @@
 #include "bullet_bridge/kinematic_rope.h"
 #include "bullet_bridge/rope_debug_draw.h"
 #include "rope/common/error.h"
+#include "rope/common/prefetch.h"
 
 namespace rope::bullet {
 
@@ -90,6 +91,8 @@ void RopeWorld::addRope(RopeObject& rope) {
   rope.worldIndex_ = static_cast<int>(ropes_.size());
   ropes_.push_back(&rope);
   rope.enterWorld(*this, world_);
+  // Filled anew each substep before any rope reads it; the rope keeps the pointer until it leaves.
+  rope.shareBodyAttachmentCounts(&bodyAttachmentCounts_);
 }
 
 void RopeWorld::removeRope(RopeObject& rope) {
@@ -171,7 +174,6 @@ void RopeWorld::substep(double h) {
     }
   }
   bodyAttachmentCounts_.resize(unique);
-  for (RopeObject* rope : ropes_) rope->shareBodyAttachmentCounts(&bodyAttachmentCounts_);
   // Each rope is taken through as much of its substep as it can in one visit, while its data is in
   // the cache: a separate pass over all ropes per phase (self-contact trees, begin, rope-contact
   // bookkeeping, end) fetched every rope's data from memory again each time once the ropes outgrew
@@ -188,6 +190,15 @@ void RopeWorld::substep(double h) {
   }
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     RopeObject& rope = *ropes_[r];
+    // The ropes' states outgrow the caches (1000 ropes: ~20 MB touched per substep), so each rope's
+    // first reads waited for memory: ask for the next ropes' data in stages (RopeObject::
+    // prefetchObject) while this one is stepped (rope/common/prefetch.h).
+    if (r + 3 < ropes_.size()) ropes_[r + 3]->prefetchObject();
+    if (r + 2 < ropes_.size()) ropes_[r + 2]->prefetchParts();
+    if (r + 1 < ropes_.size()) {
+      ropes_[r + 1]->prefetchState();
+      prefetchVector(candidates_[r + 1]);
+    }
     // Bodies removed from the world (perhaps deleted) since the last substep lose their attachments
     // before anything reads them.
     rope.dropDepartedAttachments(world_);
@@ -230,6 +241,17 @@ void RopeWorld::substep(double h) {
 
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     RopeObject* rope = ropes_[r];
+    // By now the first ropes' data has left the caches again: the same staged hints as above, for
+    // what this pass reads of a finished rope, and everything for one that still has to finish.
+    if (r + 3 < ropes_.size()) ropes_[r + 3]->prefetchObject();
+    if (r + 2 < ropes_.size()) ropes_[r + 2]->prefetchParts();
+    if (r + 1 < ropes_.size()) {
+      if (ropeStages_[r + 1] == RopeStage::kFinished) {
+        ropes_[r + 1]->prefetchRecords();
+      } else {
+        ropes_[r + 1]->prefetchState();
+      }
+    }
     if (!rope->resting() && ropeStages_[r] != RopeStage::kFinished) {
       guardedCall([&] { rope->finishSubstep(h); }, [&](const char* message) { rope->failSubstep(message); });
     }

@@ -70,6 +70,8 @@ class BodyContacts {
   int anchorCount() const { return anchors_.size(); }
   // Whether a sample of this substep is on a dynamic body (finish() may give that body an impulse).
   bool pushesBodies() const;
+  // Cache hints (rope/common/prefetch.h) for the samples and anchors the next substep reads.
+  void prefetch() const;
 
  private:
   struct Sample {

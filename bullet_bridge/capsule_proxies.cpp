@@ -9,6 +9,7 @@
 
 #include "bullet_bridge/detail/bullet_math.h"
 #include "rope/common/error.h"
+#include "rope/common/prefetch.h"
 
 namespace rope::bullet {
 
@@ -173,6 +174,22 @@ void CapsuleProxies::resize(int count) {
 }
 
 int CapsuleProxies::updateBoxes(const Rod& rod, double predictionTime, double margin) {
+  const int overflows = fitBoxes(rod, predictionTime, margin);
+  announceObjectBox();  // nothing if the object's box was kept (too large) or there is no tree
+  return overflows;
+}
+
+int CapsuleProxies::updateBoxesDeferred(const Rod& rod, double predictionTime, double margin) {
+  return fitBoxes(rod, predictionTime, margin);
+}
+
+void CapsuleProxies::announceObjectBox() {
+  if (!boxUnannounced_) return;
+  boxUnannounced_ = false;
+  if (world_ != nullptr && !orphaned()) world_->updateSingleAabb(object_.get());
+}
+
+int CapsuleProxies::fitBoxes(const Rod& rod, double predictionTime, double margin) {
   rebuild(rod);
   int overflows = 0;
   // Each end is shared by two capsules: its speed once.
@@ -199,7 +216,7 @@ int CapsuleProxies::updateBoxes(const Rod& rod, double predictionTime, double ma
     if (!fitLeaf(i, lo, hi)) ++overflows;
   }
   if (shape_->getDynamicAabbTree()->m_root == nullptr) return overflows;
-  return fitObjectBox() ? overflows : size();
+  return setObjectBox() ? overflows : size();
 }
 
 bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {
@@ -220,13 +237,19 @@ bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {
 }
 
 bool CapsuleProxies::fitObjectBox() {
+  if (!setObjectBox()) return false;
+  announceObjectBox();
+  return true;
+}
+
+bool CapsuleProxies::setObjectBox() {
   const btDbvt& tree = *shape_->getDynamicAabbTree();
   if (tree.m_root == nullptr) return true;
   const btVector3 lo = tree.m_root->volume.Mins(), hi = tree.m_root->volume.Maxs();
   const double d2 = diagonal2(lo, hi);
   if (!std::isfinite(d2) || d2 >= kBulletAabbLimit2) return false;  // the rope's box keeps its last value
   shape_->setBox(lo, hi);
-  if (world_ != nullptr && !orphaned()) world_->updateSingleAabb(object_.get());
+  boxUnannounced_ = true;
   return true;
 }
 
@@ -259,6 +282,15 @@ double CapsuleProxies::parameterNear(int i, const btVector3& point) const {
   t = std::clamp(t, 0.0, 1.0);
   const CapsuleProxy& p = proxy(i);
   return p.s0 + t * (p.s1 - p.s0);
+}
+
+void CapsuleProxies::prefetch() const {
+  prefetchVector(proxies_);
+  prefetchVector(axis_);
+  prefetchVector(ends_);
+  prefetchVector(speeds_);
+  prefetchBytes(object_.get(), sizeof(btCollisionObject));
+  prefetchBytes(shape_.get(), sizeof(RopeShape));
 }
 
 RopeObject* CapsuleProxies::ropeOf(const btCollisionObject& object) {

@@ -90,6 +90,13 @@ class CapsuleProxies {
   // root. A leaf Bullet would drop as too large (diagonal^2 >= 1e12 m^2, its "overflow in AABB"
   // rule) is not applied; the count is returned (all capsules if the whole rope's box is too large).
   int updateBoxes(const Rod& rod, double predictionTime, double margin);
+  // The same, but the object's new box reaches Bullet's broadphase only at the next
+  // announceObjectBox(): a RopeWorld finishes some ropes' substeps out of world order and hands their
+  // boxes to the broadphase in world order afterwards, which keeps the broadphase's tree, and so
+  // Bullet's pair order, as it was (rope_world.cpp, substep).
+  int updateBoxesDeferred(const Rod& rod, double predictionTime, double margin);
+  // Hands the box of the last updateBoxesDeferred to Bullet's broadphase, if it has not been yet.
+  void announceObjectBox();
   // The parts of updateBoxes, for a caller that computes its own swept boxes: placeCapsule moves
   // compound child i onto capsule i's axis; fitLeaf sets its tree leaf to cover [lo, hi] (false, and
   // the leaf kept, if Bullet would drop such a box); fitObjectBox sets the object's broadphase box to
@@ -117,12 +124,19 @@ class CapsuleProxies {
 
   // The rope a collision object is, or nullptr if it is not a dynamic rope's object.
   static RopeObject* ropeOf(const btCollisionObject& object);
+  // Cache hints (rope/common/prefetch.h) for the capsules, the object and the shape (this object's
+  // own bytes are the caller's to ask for first: RopeObject::prefetchParts).
+  void prefetch() const;
 
  private:
   void configureObject(void* owner, int tag);
   void requireCapsule(int i) const;
   void addCapsule();
   void resize(int count);
+  // updateBoxes without the broadphase: the capsules, their leaves and the object's box.
+  int fitBoxes(const Rod& rod, double predictionTime, double margin);
+  // The object's box from the tree's root (false, and the box kept, if too large), without Bullet.
+  bool setObjectBox();
 
   int capsulesPerSpan_;
   btScalar radius_;
@@ -134,6 +148,7 @@ class CapsuleProxies {
   std::unique_ptr<RopeShape> shape_;
   std::unique_ptr<btCollisionObject> object_;
   btCollisionWorld* world_ = nullptr;
+  bool boxUnannounced_ = false;  // updateBoxesDeferred set a box the broadphase has not seen yet
 };
 
 }  // namespace rope::bullet

@@ -12,6 +12,7 @@
 #include "bullet_bridge/contact/distributed_loads.h"
 #include "bullet_bridge/rope_world.h"
 #include "rope/common/error.h"
+#include "rope/common/prefetch.h"
 #include "rope/rod/axial_force.h"
 #include "rope/spline/bspline_curve.h"
 
@@ -379,6 +380,45 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
 }
 
 void RopeObject::endSubstep(double h) {
+  finishSubstep(h);
+  announceBox();
+}
+
+void RopeObject::announceBox() {
+  // The broadphase update is the last part of the refit (RopeStepRecord::proxySeconds).
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  proxies_->announceObjectBox();
+  lastStep_.proxySeconds += std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+bool RopeObject::finishesAlone() const {
+  for (const PendingSpring& pending : pending_) {
+    if (pending.body != nullptr) return false;
+  }
+  return !bodyContacts_.pushesBodies();
+}
+
+void RopeObject::prefetchObject() const { prefetchBytes(this, sizeof(*this)); }
+
+void RopeObject::prefetchParts() const { prefetchBytes(proxies_.get(), sizeof(CapsuleProxies)); }
+
+void RopeObject::prefetchState() const {
+  rod_.prefetch();
+  proxies_->prefetch();
+  bodyContacts_.prefetch();
+  prefetchVector(contacts_);
+  prefetchVector(attachments_);
+  prefetchVector(attachmentLoads_);
+}
+
+void RopeObject::prefetchRecords() const {
+  prefetchVector(contacts_);
+  prefetchVector(attachmentLoads_);
+  prefetchBytes(&proxies_->object(), sizeof(btCollisionObject));
+}
+
+void RopeObject::finishSubstep(double h) {
   requirePositive("h", h);
   using Clock = std::chrono::steady_clock;
   const Clock::time_point commitStart = Clock::now();
@@ -437,7 +477,7 @@ void RopeObject::endSubstep(double h) {
     attachmentLoads_.push_back(record);
   }
   const Clock::time_point proxyStart = Clock::now();
-  lastStep_.proxyOverflows = proxies_->updateBoxes(rod_, h, settings_.speculativeMargin);
+  lastStep_.proxyOverflows = proxies_->updateBoxesDeferred(rod_, h, settings_.speculativeMargin);
   const Clock::time_point end = Clock::now();
   lastStep_.solveSeconds += std::chrono::duration<double>(proxyStart - commitStart).count();
   lastStep_.proxySeconds = std::chrono::duration<double>(end - proxyStart).count();

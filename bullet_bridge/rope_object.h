@@ -194,6 +194,24 @@ class RopeObject {
 
  private:
   friend class RopeWorld;
+  // endSubstep, except that the rope's new box reaches Bullet's broadphase only at announceBox()
+  // (CapsuleProxies::updateBoxesDeferred): the RopeWorld hands the boxes over in world order.
+  void finishSubstep(double h);
+  void announceBox();
+  // Whether finishing this substep (endSubstep) acts on nothing but this rope: no attachment spring
+  // and no contact sample gives a dynamic body an impulse. Such a rope's substep can be finished
+  // before the other ropes' begin without changing what they see.
+  bool finishesAlone() const;
+  // Cache hints (rope/common/prefetch.h) the RopeWorld gives three, two and one ropes ahead of the
+  // rope it steps: this object's own bytes; then (once they have arrived) its capsule proxies'
+  // object; then the heap blocks both point to. Each stage reads only pointers the previous one
+  // brought in, so none of them waits for memory.
+  void prefetchObject() const;
+  void prefetchParts() const;
+  void prefetchState() const;
+  // The same for what RopeWorld's last pass over the ropes reads once the rope's substep is done:
+  // its records and its collision object (the box for Bullet's broadphase).
+  void prefetchRecords() const;
   // Rope-rope contact statistics of the substep (RopeWorld fills them in between the two halves).
   // `near`: the rope had rope-rope or self-contact candidates (active or not) this substep.
   void recordRopeContacts(int active, double maxOverlap, bool near) {

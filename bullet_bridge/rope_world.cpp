@@ -18,6 +18,7 @@
 #include "bullet_bridge/kinematic_rope.h"
 #include "bullet_bridge/rope_debug_draw.h"
 #include "rope/common/error.h"
+#include "rope/common/prefetch.h"
 
 namespace rope::bullet {
 
@@ -90,6 +91,8 @@ void RopeWorld::addRope(RopeObject& rope) {
   rope.worldIndex_ = static_cast<int>(ropes_.size());
   ropes_.push_back(&rope);
   rope.enterWorld(*this, world_);
+  // Filled anew each substep before any rope reads it; the rope keeps the pointer until it leaves.
+  rope.shareBodyAttachmentCounts(&bodyAttachmentCounts_);
 }
 
 void RopeWorld::removeRope(RopeObject& rope) {
@@ -111,11 +114,23 @@ void RopeWorld::removeRope(RopeObject& rope) {
 
 void RopeWorld::sortCapsulePairs() {
   // Least-significant-digit radix sort with two stable counting passes over global capsule numbers
-  // (ropes' capsules numbered in rope order): by the second capsule, then by the first. O(pairs +
-  // capsules); the comparison sort of every pair was 8 % of the knot scene's step, and insertion
-  // sort within the first capsule's bucket 11 % (a capsule of a tight knot pairs with dozens).
-  ropeOffsets_.assign(1, 0);
-  for (const RopeObject* rope : ropes_) ropeOffsets_.push_back(ropeOffsets_.back() + rope->proxies().size());
+  // (the paired ropes' capsules numbered in rope order): by the second capsule, then by the first.
+  // O(pairs + capsules of the paired ropes); the comparison sort of every pair was 8 % of the knot
+  // scene's step, and insertion sort within the first capsule's bucket 11 % (a capsule of a tight knot
+  // pairs with dozens). A rope's range covers its capsule count and every capsule index a pair names
+  // (a pair found before a rebuild may name one past the end; the solve skips it), so the order is
+  // (ropeA, capsuleA, ropeB, capsuleB) whatever the indices.
+  ropeOffsets_.assign(pairRopes_.size() + 1, 0);
+  for (std::size_t k = 0; k < pairRopes_.size(); ++k) {
+    ropeOffsets_[k + 1] = pairRopes_[k]->proxies().size();
+  }
+  for (const RopeCapsulePair& p : capsulePairs_) {
+    int& a = ropeOffsets_[static_cast<std::size_t>(p.ropeA) + 1];
+    int& b = ropeOffsets_[static_cast<std::size_t>(p.ropeB) + 1];
+    a = std::max(a, p.capsuleA + 1);
+    b = std::max(b, p.capsuleB + 1);
+  }
+  for (std::size_t k = 0; k < pairRopes_.size(); ++k) ropeOffsets_[k + 1] += ropeOffsets_[k];
   const int capsules = ropeOffsets_.back();
   const auto first = [&](const RopeCapsulePair& p) {
     return static_cast<std::size_t>(ropeOffsets_[static_cast<std::size_t>(p.ropeA)] + p.capsuleA);
@@ -159,9 +174,31 @@ void RopeWorld::substep(double h) {
     }
   }
   bodyAttachmentCounts_.resize(unique);
-  for (RopeObject* rope : ropes_) rope->shareBodyAttachmentCounts(&bodyAttachmentCounts_);
+  // Each rope is taken through as much of its substep as it can in one visit, while its data is in
+  // the cache: a separate pass over all ropes per phase (self-contact trees, begin, rope-contact
+  // bookkeeping, end) fetched every rope's data from memory again each time once the ropes outgrew
+  // the caches (1000 ropes resting on a box cost 1.56 times as much per rope as 100). A rope that no
+  // rope-rope or self-contact pair names and whose end of substep pushes no dynamic body
+  // (RopeObject::finishesAlone) is finished at once: nothing it does then can reach another rope
+  // before that rope's own end of substep (the coupled rope-rope solve takes only the ropes its pairs
+  // name), so the results are the same as finishing it after every rope has begun. The new boxes
+  // reach Bullet's broadphase in world order after all ropes are done, as before.
+  ropeStages_.assign(ropes_.size(), RopeStage::kRested);
+  for (const RopeCapsulePair& pair : capsulePairs_) {
+    ropeStages_[static_cast<std::size_t>(pair.ropeA)] = RopeStage::kPaired;
+    ropeStages_[static_cast<std::size_t>(pair.ropeB)] = RopeStage::kPaired;
+  }
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     RopeObject& rope = *ropes_[r];
+    // The ropes' states outgrow the caches (1000 ropes: ~20 MB touched per substep), so each rope's
+    // first reads waited for memory: ask for the next ropes' data in stages (RopeObject::
+    // prefetchObject) while this one is stepped (rope/common/prefetch.h).
+    if (r + 3 < ropes_.size()) ropes_[r + 3]->prefetchObject();
+    if (r + 2 < ropes_.size()) ropes_[r + 2]->prefetchParts();
+    if (r + 1 < ropes_.size()) {
+      ropes_[r + 1]->prefetchState();
+      prefetchVector(candidates_[r + 1]);
+    }
     // Bodies removed from the world (perhaps deleted) since the last substep lose their attachments
     // before anything reads them.
     rope.dropDepartedAttachments(world_);
@@ -179,19 +216,46 @@ void RopeWorld::substep(double h) {
         rope.rod().setGravity(gravity);
       }
     }
+    // Self-contact candidates: capsule pairs whose tree leaves (swept boxes) overlap. The tree is the
+    // one the rope-rope pairs were found in (it is refitted only at the end of the substep), and the
+    // pairs are sorted before the solve, so finding them here changes nothing but where the time goes.
+    if (collideSelf(rope)) ropeStages_[r] = RopeStage::kPaired;
+    const bool paired = ropeStages_[r] == RopeStage::kPaired;
     if (rope.resting()) {
       guardedCall([&] { rope.restSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+      if (!paired) ropeStages_[r] = RopeStage::kRested;
     } else {
       guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+      if (!paired && rope.finishesAlone()) {
+        guardedCall([&] { rope.finishSubstep(h); }, [&](const char* message) { rope.failSubstep(message); });
+        ropeStages_[r] = RopeStage::kFinished;
+      } else if (!paired) {
+        ropeStages_[r] = RopeStage::kBegun;
+      }
     }
+    // No pair names the rope: no rope-rope contact record can (solveRopeContacts records the others).
+    if (!paired) rope.recordRopeContacts(0, 0.0, false);
   }
 
   solveRopeContacts(h);
 
-  for (RopeObject* rope : ropes_) {
-    if (!rope->resting()) {
-      guardedCall([&] { rope->endSubstep(h); }, [&](const char* message) { rope->failSubstep(message); });
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    RopeObject* rope = ropes_[r];
+    // By now the first ropes' data has left the caches again: the same staged hints as above, for
+    // what this pass reads of a finished rope, and everything for one that still has to finish.
+    if (r + 3 < ropes_.size()) ropes_[r + 3]->prefetchObject();
+    if (r + 2 < ropes_.size()) ropes_[r + 2]->prefetchParts();
+    if (r + 1 < ropes_.size()) {
+      if (ropeStages_[r + 1] == RopeStage::kFinished) {
+        ropes_[r + 1]->prefetchRecords();
+      } else {
+        ropes_[r + 1]->prefetchState();
+      }
     }
+    if (!rope->resting() && ropeStages_[r] != RopeStage::kFinished) {
+      guardedCall([&] { rope->finishSubstep(h); }, [&](const char* message) { rope->failSubstep(message); });
+    }
+    if (!rope->resting()) rope->announceBox();  // a resting rope's box went to Bullet in restSubstep
     rope->countSubstep();
     report_.contacts.insert(report_.contacts.end(), rope->contacts().begin(), rope->contacts().end());
     report_.ropes.push_back(rope->lastStep());
@@ -253,15 +317,21 @@ void RopeWorld::findCandidates(double h) {
     candidates_[static_cast<std::size_t>(rope->worldIndex_)].push_back(body);
   });
   addFastBodies(h);
-  // Rope-rope and self-contact candidates (rope_rope_contact.h): capsule pairs whose tree leaves
-  // (swept boxes) overlap.
+  // Rope-rope contact candidates (rope_rope_contact.h): capsule pairs whose tree leaves (swept boxes)
+  // overlap. Self-contact candidates are found rope by rope in substep() (collideSelf).
   for (const auto& pair : ropeRopePairs_) collideTrees(*pair.first, *pair.second);
-  // Self-contact needs the rope's own group in its mask, as for a pair of two ropes.
-  for (RopeObject* rope : ropes_) {
-    const BulletRopeSettings& settings = rope->settings();
-    if (settings.selfContact && (settings.collisionGroup & settings.collisionMask) != 0) collideTrees(*rope, *rope);
-  }
   report_.pairScanSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - scanStart).count();
+}
+
+bool RopeWorld::collideSelf(const RopeObject& rope) {
+  // Self-contact needs the rope's own group in its mask, as for a pair of two ropes.
+  const BulletRopeSettings& settings = rope.settings();
+  if (!settings.selfContact || (settings.collisionGroup & settings.collisionMask) == 0) return false;
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t before = capsulePairs_.size();
+  collideTrees(rope, rope);
+  report_.pairScanSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return capsulePairs_.size() > before;
 }
 
 void RopeWorld::collideTrees(const RopeObject& a, const RopeObject& b) {
@@ -344,45 +414,69 @@ void RopeWorld::addFastBodies(double h) {
 }
 
 void RopeWorld::solveRopeContacts(double h) {
-  // Rope-rope and self-contact, coupled into the trials of all ropes at once; pairs in a fixed order
-  // (the pair cache's order depends on pointer hashes).
+  // Rope-rope and self-contact, coupled into the trials of the ropes the pairs name (in world order,
+  // renumbered: a rope no pair names has no contact to find, and its trial may be committed already);
+  // pairs in a fixed order (the pair cache's order depends on pointer hashes).
   const auto ropeStart = std::chrono::steady_clock::now();
+  if (capsulePairs_.empty()) {
+    report_.ropeContactSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
+    return;
+  }
+  pairRopes_.clear();
+  pairRopeIndex_.assign(ropes_.size(), -1);
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    if (ropeStages_[r] != RopeStage::kPaired) continue;
+    pairRopeIndex_[r] = static_cast<int>(pairRopes_.size());
+    pairRopes_.push_back(ropes_[r]);
+  }
+  for (RopeCapsulePair& pair : capsulePairs_) {
+    pair.ropeA = pairRopeIndex_[static_cast<std::size_t>(pair.ropeA)];
+    pair.ropeB = pairRopeIndex_[static_cast<std::size_t>(pair.ropeB)];
+  }
   guardedCall(
       [&] {
         // Distant pairs out first: the tree's leaves are padded for rope-body contact, so in a knot
         // most of its pairs are neighbours or far apart (rope_rope_contact.h).
-        ropeRopeContacts_.prepare(ropes_, h);
+        ropeRopeContacts_.prepare(pairRopes_, h);
         ropeRopeContacts_.dropDistantPairs(capsulePairs_);
         sortCapsulePairs();
-        const int ropeContacts = ropeRopeContacts_.solve(ropes_, capsulePairs_, h, report_.ropeContacts);
+        const int ropeContacts = ropeRopeContacts_.solve(pairRopes_, capsulePairs_, h, report_.ropeContacts);
         if (ropeContacts < 0) {
           report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
           ++warnings_.ropeContactFailures;
         }
       },
       [&](const char* message) { failRopeContacts(message); });
-  for (std::size_t r = 0; r < ropes_.size(); ++r) {
-    int active = 0, near = 0;
-    double overlap = 0.0;
-    for (const RopePairContactRecord& record : report_.ropeContacts) {
-      if (record.ropeA != ropes_[r] && record.ropeB != ropes_[r]) continue;
-      overlap = std::max(overlap, record.depth);
-      ++near;
-      if (record.active) ++active;
-    }
-    ropes_[r]->recordRopeContacts(active, overlap, near > 0);
+  // Each paired rope's records, in one pass over the records.
+  pairRopeContacts_.assign(pairRopes_.size(), PairRopeContacts{});
+  const auto count = [&](const RopeObject& rope, const RopePairContactRecord& record) {
+    const int k = pairRopeIndex_[static_cast<std::size_t>(rope.worldIndex_)];
+    if (k < 0) return;
+    PairRopeContacts& counts = pairRopeContacts_[static_cast<std::size_t>(k)];
+    counts.overlap = std::max(counts.overlap, record.depth);
+    ++counts.near;
+    if (record.active) ++counts.active;
+  };
+  for (const RopePairContactRecord& record : report_.ropeContacts) {
+    count(*record.ropeA, record);
+    if (record.ropeB != record.ropeA) count(*record.ropeB, record);  // self-contact counts once
+  }
+  for (std::size_t k = 0; k < pairRopes_.size(); ++k) {
+    const PairRopeContacts& counts = pairRopeContacts_[k];
+    pairRopes_[k]->recordRopeContacts(counts.active, counts.overlap, counts.near > 0);
   }
   report_.ropeContactSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
 }
 
 void RopeWorld::failRopeContacts(const char* message) {
-  // The coupled solve may have corrected some trials and not others: every rope that still has a
-  // trial drops it and keeps its state this substep.
+  // The coupled solve may have corrected some trials and not others: every rope of the solve that
+  // still has a trial drops it and keeps its state this substep.
   ++warnings_.ropeContactFailures;
   lastError_ = message;
   report_.ropeContacts.clear();
   report_.ropeContactFailure = "an exception was thrown in the rope-rope contact solve; the ropes kept their state";
-  for (RopeObject* rope : ropes_) {
+  // Only the ropes the pairs name took part in the solve; the others' trials are their own.
+  for (RopeObject* rope : pairRopes_) {
     if (rope->rod().hasTrial()) rope->failSubstep(message);
   }
 }

@@ -120,6 +120,8 @@ class RopeWorld {
 
   // Self-contact and rope-rope capsule pairs from the ropes' trees (ropeA <= ropeB by world index).
   void collideTrees(const RopeObject& a, const RopeObject& b);
+  // The rope's self-contact pairs (if its settings want them); true if it found any.
+  bool collideSelf(const RopeObject& rope);
 
   btDiscreteDynamicsWorld& world_;
   std::unique_ptr<RopeDispatch> dispatch_;
@@ -131,10 +133,22 @@ class RopeWorld {
   std::vector<std::vector<const btCollisionObject*>> candidates_;  // per rope, scratch
   std::vector<btBroadphaseProxy*> fastBodyRopes_;                   // scratch of addFastBodies
   std::vector<std::pair<const btRigidBody*, int>> bodyAttachmentCounts_;  // per substep, sorted by body
-  std::vector<RopeCapsulePair> capsulePairs_;                       // scratch
+  std::vector<RopeCapsulePair> capsulePairs_;  // scratch; world indices until solveRopeContacts renumbers them
   std::vector<RopeCapsulePair> sortedPairs_;                        // scratch of sortCapsulePairs
   std::vector<int> pairBuckets_, ropeOffsets_;                     // scratch of sortCapsulePairs
-  // Puts capsulePairs_ in (ropeA, capsuleA, ropeB, capsuleB) order in O(pairs + capsules).
+  // Where each rope (by world index) is in the substep: named by a capsule pair (it waits for the
+  // rope-rope solve), begun and waiting for its end, finished already, or resting.
+  enum class RopeStage : unsigned char { kPaired, kBegun, kFinished, kRested };
+  std::vector<RopeStage> ropeStages_;
+  std::vector<RopeObject*> pairRopes_;  // the ropes the capsule pairs name, in world order
+  std::vector<int> pairRopeIndex_;      // per rope: its index in pairRopes_, -1 if none
+  struct PairRopeContacts {
+    int active = 0, near = 0;
+    double overlap = 0.0;  // m
+  };
+  std::vector<PairRopeContacts> pairRopeContacts_;  // per paired rope, scratch of solveRopeContacts
+  // Puts capsulePairs_ (indices into pairRopes_) in (ropeA, capsuleA, ropeB, capsuleB) order in
+  // O(pairs + capsules of the paired ropes).
   void sortCapsulePairs();
   RopeRopeContacts ropeRopeContacts_;
   ContactReport report_;

@@ -14,6 +14,7 @@
 #include "bullet_bridge/detail/bullet_math.h"
 #include "bullet_bridge/find_contacts.h"
 #include "rope/common/error.h"
+#include "rope/common/prefetch.h"
 #include "rope/spline/bspline_basis.h"
 
 namespace rope::bullet {
@@ -232,6 +233,18 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
             ? sample.pressureEstimate * w
             : std::max(0.0, -sample.law.stiffness * static_cast<double>(sample.geometry.contact.distance));
   }
+}
+
+bool BodyContacts::pushesBodies() const {
+  for (const Sample& sample : samples_) {
+    if (sample.body != nullptr) return true;
+  }
+  return false;
+}
+
+void BodyContacts::prefetch() const {
+  prefetchVector(samples_);  // as many as last substep: a rope at rest finds the same again
+  anchors_.prefetch();
 }
 
 void BodyContacts::queue(Rod& rod) const {

@@ -68,6 +68,10 @@ class BodyContacts {
   void dropSamples() { samples_.clear(); }
   void reset();
   int anchorCount() const { return anchors_.size(); }
+  // Whether a sample of this substep is on a dynamic body (finish() may give that body an impulse).
+  bool pushesBodies() const;
+  // Cache hints (rope/common/prefetch.h) for the samples and anchors the next substep reads.
+  void prefetch() const;
 
  private:
   struct Sample {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "bullet_bridge/contact/friction_anchors.h"
 #include "bullet_bridge/detail/bullet_math.h"
+#include "rope/common/prefetch.h"
 
 #include <algorithm>
 #include <functional>
@@ -56,5 +57,7 @@ void FrictionAnchors::clear() {
   anchors_.clear();
   next_.clear();
 }
+
+void FrictionAnchors::prefetch() const { prefetchVector(anchors_); }
 
 }  // namespace rope::bullet

@@ -35,6 +35,7 @@ struct FrictionAnchor {
 
 class FrictionAnchors {
  public:
+  void prefetch() const;  // cache hints for the stored anchors (rope/common/prefetch.h)
   // The anchor for a sample at s on body (world frame, at the body's current transform), from the
   // stored anchors within `reach` (parameter units) of s. Returns false if there is none.
   bool find(const btCollisionObject& body, double s, double reach, const Rod& rod, btVector3& anchor,

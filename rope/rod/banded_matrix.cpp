@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include "rope/common/prefetch.h"
 
 namespace rope {
 
@@ -149,5 +150,7 @@ void SymmetricBandedMatrix::solve(double* x) const {
   forwardSubstitute(x, 0);
   backSubstitute(x);
 }
+
+void SymmetricBandedMatrix::prefetch() const { prefetchVector(band_); }
 
 }  // namespace rope

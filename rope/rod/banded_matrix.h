@@ -16,6 +16,7 @@ namespace rope {
 
 class SymmetricBandedMatrix {
  public:
+  void prefetch() const;  // cache hints for the band (rope/common/prefetch.h)
   SymmetricBandedMatrix() = default;
   // Zero matrix of blockCount x blockCount blocks of size blockSize with block half bandwidth
   // blockBandwidth. Reuses the storage when it is big enough (no allocation in a steady state).

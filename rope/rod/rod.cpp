@@ -6,6 +6,7 @@
 #include <string>
 
 #include "rope/common/error.h"
+#include "rope/common/prefetch.h"
 #include "rope/rod/bending_energy.h"
 #include "rope/rod/stretching_energy.h"
 #include "rope/spline/arc_length.h"
@@ -941,6 +942,34 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
     }
   }
   return true;
+}
+
+void Rod::prefetch() const {
+  prefetchVector(knots_.values());
+  prefetchVector(points_);
+  prefetchVector(velocities_);
+  prefetchVector(rest_);
+  integrals_.prefetch();
+  prefetchVector(pins_);
+  prefetchVector(loads_);
+  prefetchVector(springs_);
+  system_.prefetch();
+  prefetchVector(rows_);
+  prefetchVector(rhs_);
+  prefetchVector(force_);
+  prefetchVector(stiffnessTimesV_);
+  prefetchVector(massTimesV_);
+  prefetchVector(internalForce_);
+  prefetchVector(historyTerm_);
+  prefetchVector(stiffnessBlocks_);
+  prefetchVector(internalImpulse_);
+  prefetchVector(previousInternalImpulse_);
+  prefetchVector(newPoints_);
+  prefetchVector(newVelocities_);
+  prefetchVector(relinearisationPoints_);
+  prefetchVector(stretchScratch_);
+  prefetchVector(bend_);
+  prefetchVector(spans_);
 }
 
 }  // namespace rope

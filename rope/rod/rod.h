@@ -114,6 +114,8 @@ class Rod {
   int degree() const { return knots_.degree(); }
   int controlPointCount() const { return static_cast<int>(points_.size()); }
   const KnotVector& knots() const { return knots_; }
+  // Cache hints (rope/common/prefetch.h) for the state and scratch a step reads; changes nothing.
+  void prefetch() const;
   const PointList& controlPoints() const { return points_; }
   const PointList& velocities() const { return velocities_; }     // control-point velocities, m/s
   const PointList& restControlPoints() const { return rest_; }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "rope/common/error.h"
+#include "rope/common/prefetch.h"
 #include "rope/spline/bspline_basis.h"
 #include "rope/spline/gauss_legendre.h"
 
@@ -279,5 +280,7 @@ double RodIntegrals::B4(int i, int m, int p, int q) const {
   }
   return sum;
 }
+
+void RodIntegrals::prefetch() const { prefetchVector(data_); }
 
 }  // namespace rope

@@ -48,6 +48,7 @@ struct SpanView {
 
 class RodIntegrals {
  public:
+  void prefetch() const;  // cache hints for the cached integrals (rope/common/prefetch.h)
   // Minimal Gauss count that is exact for every integrand when l0' is constant.
   static int exactGaussCount(int degree);
 

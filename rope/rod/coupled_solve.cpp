@@ -137,6 +137,7 @@ void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<Poin
   acting_.clear();
   zColumn_.assign(m, -1);
   zColumns_ = 0;
+  deltaImpulses_.assign(m, Vec3::Zero());  // no solve yet: solvedRelativeChange is the trial's change
   deltaValid_ = false;
 }
 
@@ -209,6 +210,9 @@ Vec3 CoupledSolve::relativeChange(int k, const std::vector<Vec3>& impulses) {
 }
 
 Vec3 CoupledSolve::solvedRelativeChange(int k) {
+  if (k < 0 || k >= size()) {
+    throw InvalidArgument("k", std::to_string(k), "must index a coupling (0 to " + std::to_string(size() - 1) + ")");
+  }
   // w_new - w = J_k (dv_trial + P J^T p) = trialChange_k + B_a dv - B_b dv (eq. 37).
   if (!deltaValid_) computeVelocityChange(deltaImpulses_);
   return trialChange_[static_cast<size_t>(k)] + velocityChangeAt(pointA_[static_cast<size_t>(k)]) -

@@ -65,9 +65,10 @@ class CoupledSolve {
   // The relative velocity change of coupling k at the end of the step with impulses p: w_new - w.
   // Not const: it fills the cache of Z blocks (see zBlockCached).
   Vec3 relativeChange(int k, const std::vector<Vec3>& impulses);
-  // The same for the impulses of the last successful solveImpulses (zero before one, or after one
-  // that failed), at O(degree) per call after one O(a n) pass per solve: for an active set that asks
-  // for every candidate after each solve.
+  // The same for the impulses of the last successful solveImpulses since prepare() (zero before one,
+  // or after one that failed), at O(degree) per call after one O(a n) pass per solve: for an active
+  // set that asks for every candidate after each solve. Throws InvalidArgument("k") outside
+  // [0, size()).
   Vec3 solvedRelativeChange(int k);
   // Adds the impulses' effect to the rods' trials (Rod::correctTrial) and marks the coupling points as
   // interaction points (a knot there at commit, [A] §4).

@@ -204,6 +204,19 @@ TEST(CoupledSolve, SolvedRelativeChangeFollowsTheLastSolve) {
   const std::vector<CouplingLaw> none(other.size());
   ASSERT_TRUE(solve.solveImpulses(none, impulses));
   for (int k = 0; k < solve.size(); ++k) EXPECT_EQ(solve.solvedRelativeChange(k), solve.trialRelativeChange(k)) << k;
+  // A new prepare forgets the last solve's impulses.
+  ASSERT_TRUE(setup.solve(solve, impulses));
+  solve.prepare({&setup.a, &setup.b}, setup.couplings);
+  for (int k = 0; k < solve.size(); ++k) EXPECT_EQ(solve.solvedRelativeChange(k), solve.trialRelativeChange(k)) << k;
+  // A coupling index outside the couplings is refused, naming it.
+  for (const int k : {-1, solve.size()}) {
+    try {
+      solve.solvedRelativeChange(k);
+      ADD_FAILURE() << "k = " << k << " accepted";
+    } catch (const InvalidArgument& e) {
+      EXPECT_EQ(e.parameter(), "k") << e.what();
+    }
+  }
 }
 
 // The three-axis response (one pass over the factor) is bitwise the one-axis response, pins included.

@@ -221,6 +221,7 @@ Vec3 CoupledSolve::solvedRelativeChange(int k) {
 
 void CoupledSolve::computeVelocityChange(const std::vector<Vec3>& impulses) {
   velocityChange_.resize(rods_.size());
+  touched_.assign(rods_.size(), 0);
   for (size_t r = 0; r < rods_.size(); ++r) {
     velocityChange_[r].assign(static_cast<size_t>(3 * rods_[r]->controlPointCount()), 0.0);
   }
@@ -231,6 +232,7 @@ void CoupledSolve::computeVelocityChange(const std::vector<Vec3>& impulses) {
       ensureResponse(index);
       const Point& point = points_[static_cast<size_t>(index)];
       std::vector<double>& dv = velocityChange_[static_cast<size_t>(point.rod)];
+      touched_[static_cast<size_t>(point.rod)] = 1;
       const size_t n3 = dv.size();
       const Vec3 p = side == 0 ? impulses[l] : Vec3(-impulses[l]);
       for (int axis = 0; axis < 3; ++axis) {
@@ -259,28 +261,14 @@ void CoupledSolve::apply(const std::vector<Vec3>& impulses) {
     throw InvalidArgument("impulses.size()", std::to_string(impulses.size()),
                           "must equal the coupling count " + std::to_string(couplings_.size()));
   }
+  // dv = P J^T p per rod, the sum solvedRelativeChange reads; after the correction it describes no
+  // solve any more.
+  computeVelocityChange(impulses);
+  deltaValid_ = false;
   for (size_t r = 0; r < rods_.size(); ++r) {
     Rod& rod = *rods_[r];
-    const size_t n3 = static_cast<size_t>(3 * rod.controlPointCount());
-    correction_.assign(n3, 0.0);
-    bool touched = false;
-    for (size_t k = 0; k < couplings_.size(); ++k) {
-      if (impulses[k].isZero(0.0)) continue;
-      for (int side = 0; side < 2; ++side) {
-        ensureResponse(side == 0 ? pointA_[k] : pointB_[k]);
-        const Point& point = points_[static_cast<size_t>(side == 0 ? pointA_[k] : pointB_[k])];
-        if (point.rod != static_cast<int>(r)) continue;
-        touched = true;
-        const Vec3 p = side == 0 ? impulses[k] : Vec3(-impulses[k]);
-        for (int axis = 0; axis < 3; ++axis) {
-          const double* column = &point.response[static_cast<size_t>(axis) * n3];
-          const double weight = p[axis];
-          for (size_t i = 0; i < n3; ++i) correction_[i] += weight * column[i];
-        }
-      }
-    }
-    if (!touched) continue;
-    rod.correctTrial(correction_.data());
+    if (!touched_[r]) continue;
+    rod.correctTrial(velocityChange_[r].data());
     for (size_t k = 0; k < couplings_.size(); ++k) {
       if (impulses[k].isZero(0.0)) continue;  // a coupling that did not act needs no knot
       const PointCoupling& c = couplings_[k];

@@ -112,14 +112,14 @@ class CoupledSolve {
   Eigen::VectorXd rhs_, impulse_;
   std::vector<Eigen::Matrix3d> roots_;  // L with W = L L^T, per acting coupling
   Eigen::LLT<Eigen::MatrixXd> llt_;
-  std::vector<double> correction_;
-  // solvedRelativeChange's velocity change of every rod, dv = P J^T p for the last solve's impulses
-  // (per rod 3n, m/s): one O(a n) sum per solve, then O(degree) per coupling, instead of a 3x3 block
-  // of Z per candidate and acting coupling (O(m a) blocks of four dot products each: 12 % of the 2 m
-  // pile's step). Valid while deltaValid_.
+  // Every rod's velocity change dv = P J^T p for the impulses (per rod 3n, m/s), and which rods it
+  // touches: the correction apply() makes, and what solvedRelativeChange reads for the last solve's
+  // impulses (one O(a n) sum per solve, then O(degree) per coupling, instead of a 3x3 block of Z per
+  // candidate and acting coupling: 12 % of the 2 m pile's step). For the last solve while deltaValid_.
   void computeVelocityChange(const std::vector<Vec3>& impulses);
   Vec3 velocityChangeAt(int p) const;  // B_p dv at point p
   std::vector<std::vector<double>> velocityChange_;
+  std::vector<char> touched_;  // per rod: some acting coupling point lies on it
   std::vector<Vec3> deltaImpulses_;
   bool deltaValid_ = false;
 };

@@ -48,6 +48,7 @@ set(SPLINEROPE_ROPE_INTERNAL_HEADERS
   rope/spline/point_validation.h
   rope/rod/adaptivity.h
   rope/rod/bending_energy.h
+  rope/rod/insertion_relaxation.h
   rope/rod/stretching_energy.h
   rope/tractrix/tractrix_chain.h
 )

@@ -629,6 +629,8 @@ StepReport Rod::commitTrial() {
   interactions_.insert(interactions_.end(), markedInteractions_.begin(), markedInteractions_.end());
   contactLastStep_ = contactMarked_;
   contactMarked_ = false;
+  // Free in this step: nothing but pins, clamps and point masses acted on it (they are added below).
+  freeLastStep_ = interactions_.empty() && !contactLastStep_;
   recordInternalImpulse();  // before the swap: it needs the start-of-step forces and the new velocities
   points_.swap(newPoints_);
   velocities_.swap(newVelocities_);

@@ -76,6 +76,13 @@ struct StepReport {
   double maxRemovalError = 0.0;          // m, largest curve displacement a removal caused
   double maxRemovalVelocityError = 0.0;  // m/s, same for the velocity field (removal sweep and
                                          // momentum correction)
+  // An insertion keeps the curve exactly, unless the new knot's stretching points see a strain the
+  // coarser rope held no energy for: then the nearby control points move by the least displacement
+  // that gives that energy back (insertion_relaxation.h; docs/method.md §10). m, largest such move.
+  double maxInsertionRelaxation = 0.0;
+  // J: internal energy an insertion added that its relaxation could not give back (0 in every scene
+  // measured; more than 0 means the total energy grew by this much).
+  double unrelaxedInsertionEnergy = 0.0;
   // The knot vector after the step is Rod::knots().
 };
 
@@ -366,7 +373,11 @@ class Rod {
   // Whether `next` (end-of-step control points) breaks kMaxStepStretch (rod.cpp).
   bool overstretchedBy(const PointList& next) const;
   void adapt(StepReport& report);
-  void insertKnotUnchecked(double s);
+  // Inserts s exactly ([A] eq. 6). Adaptivity's insertions (report given: counted there) in a rope that
+  // was free in the step (freeLastStep_) also give back the stretching energy the new knot reveals
+  // (insertion_relaxation.h), which moves the curve a little; an explicit insertKnot, the winch's
+  // insertions and insertions in a held or touched rope keep the curve exactly.
+  void insertKnotUnchecked(double s, StepReport* report = nullptr);
   // Applies a planned removal to knots, points, velocities, rest state and integrals together, and
   // for a rope without pins and interactions restores the momentum the velocity sweep changed by the
   // least-kinetic-energy correction, a uniform velocity (docs/method.md §10); returns its size, m/s.
@@ -396,6 +407,7 @@ class Rod {
   SymmetricBandedMatrix system_;
   ConstrainedSolver solver_;
   std::vector<ConstraintRows> rows_;
+  std::vector<ConstraintRows> relaxationRows_;  // insertKnotUnchecked's scratch
   std::vector<double> rhs_;
   PointList force_, stiffnessTimesV_, massTimesV_;
   // The internal forces (stretching, bending; N per control point) at the start of the trial, their
@@ -417,6 +429,7 @@ class Rod {
   std::vector<double> interactions_;
   bool contactMarked_ = false;    // markContact() since the last commit (clearLoads keeps it)
   bool contactLastStep_ = false;  // the last committed step was in contact (kMechanicalOutOfContact)
+  bool freeLastStep_ = false;     // ... and nothing but pins, clamps and point masses acted on it
   std::vector<double> markedInteractions_;
   bool trialValid_ = false;
   double trialStep_ = 0.0;

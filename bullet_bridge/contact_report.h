@@ -67,6 +67,10 @@ struct RopeStepRecord {
   int controlPoints = 0;         // after the step's adaptivity
   int insertions = 0;            // knots inserted by the step's adaptivity
   int removals = 0;              // knots removed by the step's adaptivity
+  // StepReport's: m, largest move by which an insertion gave back revealed stretching energy (free
+  // ropes), and J, revealed energy an insertion did not give back (rope/rod/rod.h).
+  double maxInsertionRelaxation = 0.0;
+  double unrelaxedInsertionEnergy = 0.0;
   int solvePasses = 0;           // rod solves in the substep (contact active set, contact/contact_response.h)
   int ropeContacts = 0;          // active rope-rope and self-contacts this rope takes part in
   double maxSelfOverlap = 0.0;   // m, deepest overlap with itself or another rope at the start of the substep

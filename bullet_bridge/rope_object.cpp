@@ -451,6 +451,8 @@ void RopeObject::finishSubstep(double h) {
     lastStep_.failure = report.failure;
     lastStep_.insertions = report.insertions;
     lastStep_.removals = report.removals;
+    lastStep_.maxInsertionRelaxation = report.maxInsertionRelaxation;
+    lastStep_.unrelaxedInsertionEnergy = report.unrelaxedInsertionEnergy;
   } else {
     lastStep_.ok = false;
     if (*lastStep_.failure == '\0') lastStep_.failure = "the rope's trial step was discarded";

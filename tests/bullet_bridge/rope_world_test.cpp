@@ -171,6 +171,70 @@ TEST(RopeWorldScenario, RopeAndBoxCollidingConserveLinearMomentum) {
   }
 }
 
+// The same collision with nothing damped (rope, contact, speculative contact and friction off), default
+// adaptivity: knots are inserted at the contacts and removed after, and the total energy of rope and
+// box must never exceed its start by more than what removals may change (kinetic energy by
+// m (v dv + dv^2 / 2) each) at any step out of contact.
+// Open (label `open`, issues 15 and 20): it does not hold. A contact load between the locking-free
+// rule's strain samples deforms the rope in a pattern that rule holds no energy for (docs/method.md
+// §7), and an insertion at the contact then samples it: measured at 1 m/s, one insertion raised the
+// stretching energy to 2.4 J, 16 times the 0.145 J the system started with, and after the bounce a
+// step out of contact (but with candidates, so not a free rope) stood 0.015 J above the start. The
+// relaxation that gives such energy back in free ropes (docs/method.md §10) is not applied in contact:
+// applied there, it moved points by up to 8 mm and broke eight contact scenes (a fast rope passed
+// through another, the capstan at 2 pi and mu = 0.5 slipped). With the default speculative damping on,
+// the same run loses 82 % of its energy and passes.
+TEST(RopeWorldScenario, RopeAndBoxCollidingWithoutDampingNeverGainEnergy) {
+  for (const double speed : {1.0, 3.0}) {
+    demos::PhysicsWorld physics(btVector3(0, 0, 0));
+    btRigidBody* box = physics.addBox(btVector3(0.1, 0.1, 0.1), 2.0, btVector3(0.05, 0, 0));
+    box->setActivationState(DISABLE_DEACTIVATION);
+    box->setFriction(0.0);
+    RodSettings rod = limpRope();
+    rod.gravity = Vec3::Zero();
+    rod.massDamping = rod.stiffnessDamping = 0.0;
+    ASSERT_TRUE(rod.adaptive);  // the default
+    rod.restLength = 0.8;
+    BulletRopeSettings settings;
+    settings.lineContactDamping = settings.contactDamping = settings.friction = 0.0;
+    settings.lineSpeculativeDamping = settings.speculativeDamping = 0.0;
+    RopeObject rope(Rod::fromSegment(rod, Vec3(-0.4, 0.4, 0.0), Vec3(0.4, 0.4, 0.0)), settings);
+    rope.rod().setVelocities(PointList(static_cast<std::size_t>(rope.rod().controlPointCount()), Vec3(0, -speed, 0)));
+    physics.ropes().addRope(rope);
+    auto total = [&] {
+      const btVector3 v = box->getLinearVelocity(), w = box->getAngularVelocity();
+      return rope.rod().totalEnergy() + 0.5 * v.length2() / box->getInvMass() +
+             0.5 * w.dot(box->getInvInertiaTensorWorld().inverse() * w);
+    };
+    const double initial = total();
+    double allowance = 0.0, highest = -initial;
+    int insertions = 0, removals = 0, contactSteps = 0;
+    for (int i = 0; i < 480; ++i) {
+      double fastest = 0.0;  // the field's speed is at most its fastest control point's (convex hull)
+      for (const Vec3& v : rope.rod().velocities()) fastest = std::max(fastest, v.norm());
+      stepWorld(physics.world(), 1);
+      ASSERT_TRUE(rope.lastStep().ok);
+      const RopeStepRecord& step = rope.lastStep();
+      insertions += step.insertions;
+      removals += step.removals;
+      const double dv = rod.removalVelocityErrorBound;
+      allowance += step.removals * rope.rod().mass() * (fastest * dv + 0.5 * dv * dv);
+      if (step.contacts > 0) {
+        ++contactSteps;
+        continue;  // the contact's own potential is not counted
+      }
+      highest = std::max(highest, total() - initial - allowance);
+    }
+    EXPECT_GT(contactSteps, 5);
+    EXPECT_GT(insertions, 0);
+    EXPECT_GT(removals, 0);
+    EXPECT_LE(highest, 1e-12 * initial) << speed << " m/s";
+    EXPECT_LT(total(), initial);
+    std::printf("undamped rope on a free box at %.0f m/s: energy %.4f -> %.4f J, %d contact steps, %d insertions, %d "
+                "removals\n", speed, initial, total(), contactSteps, insertions, removals);
+  }
+}
+
 // A box sliding into a rope stretched between two pins is stopped by it (and thrown back).
 TEST(RopeWorldScenario, BoxSlidingIntoPinnedRopeIsStopped) {
   demos::PhysicsWorld physics(btVector3(0, 0, 0));

@@ -120,14 +120,16 @@ TEST(PileScene, DroppedRopePilesUpWithoutPassingThroughItselfAndComesToRest) {
   ::testing::Test::RecordProperty("median_worst_overlap_mm", std::to_string(overlap * 1e3));
   ::testing::Test::RecordProperty("median_worst_ground_penetration_mm", std::to_string(penetration * 1e3));
   ::testing::Test::RecordProperty("median_rms_speed_after_5s_mm_per_s", std::to_string(speed * 1e3));
-  // Typical figures, bounded about 2x their measured medians (the README quotes the medians): overlap
-  // 0.88 mm, penetration at impact 2.6 mm (the coil lands at 3.1 m/s, 13 mm per step), and at rest
-  // after 5 s a heap that neither moves nor sinks (height change 0.12 mm and centre drift 0.51 mm in
-  // half a second) with a jitter (rms 3.6 mm/s; bound 8.5 mm/s as before: one drop of five still
-  // settles, at 8.5 mm/s).
-  EXPECT_LT(overlap, 0.2 * diameter);
-  EXPECT_LT(penetration, 0.5 * diameter);
-  EXPECT_LT(heightChange, 3e-4);
+  // Typical figures through their medians (the README quotes them): overlap 0.88 mm and penetration at
+  // impact 2.6 mm (the coil lands at 3.1 m/s, 13 mm per step), within the single drop's old bounds
+  // (1.4 and 3 mm; the code before: medians 1.06 and 2.2 mm over the same five drops); at rest after
+  // 5 s a heap that neither moves nor sinks: height change 0.12 mm and centre drift 0.51 mm in half a
+  // second (the code before: 0.046 and 0.48 mm; the single drop's bounds, 0.1 and 0.5 mm, are at the
+  // size of the drop-to-drop spread, 0.01-1.4 mm and 0.26-0.66 mm, so the bounds are 3x and 2x the
+  // medians), and a jitter (rms 3.6 mm/s; bound 8.5 mm/s as before).
+  EXPECT_LT(overlap, 0.14 * diameter);
+  EXPECT_LT(penetration, 0.3 * diameter);
+  EXPECT_LT(heightChange, 3.6e-4);
   EXPECT_LT(drift, 1e-3);
   EXPECT_LT(speed, 0.0085);
 }

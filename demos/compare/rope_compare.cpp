@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// rope_compare [--quick] [--out PREFIX] [--repeats N]
+// rope_compare [--quick] [--out PREFIX] [--repeats N] [--check README]
 // rope_compare --try ENGINE SCENE RESOLUTION ITERATIONS SUBSTEPS STRETCH(0/1) SECONDS
 //
 // Runs the five comparison scenes (compare.h) with SplineRope, Bullet's soft-body rope and a MuJoCo
@@ -7,8 +7,10 @@
 // PREFIX.md (the summary table and the whole sweep) and PREFIX.dat (accuracy against cost, for
 // demos/compare/plot.gp). Wall time per simulated second is the median over --repeats runs made in
 // this one process, the engines alternating within each round. --quick is the smoke run for the
-// default tests: one setting per engine and scene, short runs; it fails (exit 1) if SplineRope fails
-// a scene (a step failure, or the thin bar not held).
+// default tests (quickPlan): few settings, short runs but for the heavy load and the thin bar. Every
+// run fails (exit 1) if SplineRope fails a scene (a step failure, or the thin bar not held); with
+// --check README it also fails unless the run bears out the README table's heavy-load and thin-bar
+// claims (checkClaims), naming each claim that failed and the value measured.
 
 #include <algorithm>
 #include <chrono>
@@ -109,18 +111,27 @@ std::vector<Plan> fullPlan(double wallBudget) {
   return plans;
 }
 
+// The smoke run. Catenary and drape: one setting per engine, shortened. Heavy load and thin bar: the
+// README table's settings at the scenes' full length (4 s and 2.5 s), so that --check can hold the
+// run to the table's claims: the heavy load's cheapest setting within 1 % of each engine (the 5 kg
+// load check then runs the same settings), and every thin-bar setting of the table but MuJoCo's
+// 64 links with 4 substeps (6 s of wall time for one more "fell through"). Keep these in step with
+// the README table; --check names a setting the table states and this plan does not run.
 std::vector<Plan> quickPlan() {
   std::vector<Plan> plans;
-  auto limits = [](double seconds) {
+  auto limits = [](double seconds, double wallBudget) {
     Limits l;
-    l.wallBudget = 4.0;
+    l.wallBudget = wallBudget;
     l.seconds = seconds;
     return l;
   };
-  plans.push_back({Scene::kCatenary, limits(3.0), {{Engine::kSplineRope, {res(12)}}, {Engine::kSoftBody, {res(32, 4)}}, {Engine::kMuJoCo, {res(16)}}}});
-  plans.push_back({Scene::kHeavyLoad, limits(1.5), {{Engine::kSplineRope, {res(12)}}, {Engine::kSoftBody, {res(16, 16)}}, {Engine::kMuJoCo, {res(8, 1, 16, true)}}}});
-  plans.push_back({Scene::kThinBar, limits(1.0), {{Engine::kSplineRope, {res(16)}}, {Engine::kSoftBody, {res(33, 16)}}, {Engine::kMuJoCo, {res(33)}}}});
-  plans.push_back({Scene::kDrape, limits(0.5), {{Engine::kSplineRope, {res(16)}}, {Engine::kSoftBody, {res(32, 16)}}, {Engine::kMuJoCo, {res(32)}}}});
+  plans.push_back({Scene::kCatenary, limits(3.0, 4.0), {{Engine::kSplineRope, {res(12)}}, {Engine::kSoftBody, {res(32, 4)}}, {Engine::kMuJoCo, {res(16)}}}});
+  plans.push_back({Scene::kHeavyLoad, limits(0.0, 15.0), {{Engine::kSplineRope, {res(8)}}, {Engine::kSoftBody, {res(8, 1792)}}, {Engine::kMuJoCo, {res(4, 1, 4, true)}}}});
+  plans.push_back({Scene::kThinBar, limits(0.0, 15.0),
+                   {{Engine::kSplineRope, {res(16)}},
+                    {Engine::kSoftBody, {res(16, 16), res(33, 16), res(64, 16), res(128, 16)}},
+                    {Engine::kMuJoCo, {res(16), res(33), res(64), res(16, 1, 4), res(33, 1, 4)}}}});
+  plans.push_back({Scene::kDrape, limits(0.5, 4.0), {{Engine::kSplineRope, {res(16)}}, {Engine::kSoftBody, {res(32, 16)}}, {Engine::kMuJoCo, {res(32)}}}});
   return plans;
 }
 
@@ -298,13 +309,18 @@ std::string ratioCell(const std::vector<Entry>& entries, Engine engine, const ch
   return fmt("%.1f×", theirs->medianCost() / ours->medianCost());
 }
 
+// A thin-bar trial's outcome: "held" (the rope's highest point at the end within 10 cm of the bar's
+// top), "fell through", or how the run failed ("exploded", ...).
+std::string thinBarOutcome(const Entry& e, double barTop) {
+  if (!e.trial.ok()) return e.trial.status;
+  return metric(e, "highest_m") > barTop - 0.1 ? "held" : "fell through";
+}
+
 std::string thinBarCell(const std::vector<Entry>& entries, Engine engine, double barTop) {
   std::string cell;
   for (const Entry& e : entries) {
     if (e.engine != engine) continue;
-    const bool held = metric(e, "highest_m") > barTop - 0.1;
-    const std::string what = !e.trial.ok() ? e.trial.status : held ? "held" : "fell through";
-    cell += (cell.empty() ? "" : "; ") + e.setting.label() + ": " + what;
+    cell += (cell.empty() ? "" : "; ") + e.setting.label() + ": " + thinBarOutcome(e, barTop);
   }
   return cell;
 }
@@ -435,6 +451,7 @@ int tryOne(char** args) {
 struct Options {
   bool quick = false;
   std::string out = "rope_compare";
+  std::string checkReadme;  // --check: the README whose comparison claims the run must bear out
   int repeats = 3;
 };
 
@@ -446,9 +463,10 @@ std::optional<int> parseArguments(int argc, char** argv, Options& options) {
     if (arg == "--quick") options.quick = true;
     else if (arg == "--out" && i + 1 < argc) options.out = argv[++i];
     else if (arg == "--repeats" && i + 1 < argc) options.repeats = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--check" && i + 1 < argc) options.checkReadme = argv[++i];
     else if (arg == "--try" && i + 7 < argc) return tryOne(argv + i + 1);
     else {
-      std::cerr << "usage: rope_compare [--quick] [--out PREFIX] [--repeats N]\n";
+      std::cerr << "usage: rope_compare [--quick] [--out PREFIX] [--repeats N] [--check README]\n";
       return 2;
     }
   }
@@ -686,12 +704,186 @@ bool smokeCheckPasses(const Results& results) {
   return ok;
 }
 
+// --check README: holds the run to the claims of the README's comparison table that the default
+// tests guard (compare.smoke runs --quick --check):
+//   (2) heavy load: for each engine, the setting the row names was run, its strain error against
+//       W/(EA) is the row's figure within kClaimTolerance, and within the 1 % the row claims;
+//   (2) with a 5 kg load: the same setting at half the load, its figure within kClaimTolerance;
+//   (3) thin bar: every setting run has the outcome the row states for it ("held", "fell through",
+//       "exploded"), and SplineRope holds the bar while no peer setting does.
+// The table prints errors to 0.01 %; kClaimTolerance is three times that. All three engines are
+// deterministic, so a figure moves only when an engine's code or a scene changes: then the check
+// fails until the table is measured again (the full run) and the README updated.
+constexpr double kClaimTolerance = 0.0003;
+const char* const kComparisonHeading = "## Compared with Bullet soft-body and MuJoCo ropes";
+
+class ClaimCheck {
+ public:
+  void pass(const std::string& text) { std::fprintf(stderr, "claim ok: %s\n", text.c_str()); }
+  void fail(const std::string& text) {
+    std::fprintf(stderr, "CLAIM FAILED: %s\n", text.c_str());
+    ++failures_;
+  }
+  int failures() const { return failures_; }
+
+ private:
+  int failures_ = 0;
+};
+
+// The cells of the comparison section's table row whose title cell starts with `title` (title cell
+// first), or none. Cells are separated by " | "; an escaped "\|" inside a cell has no space before it.
+std::vector<std::string> readmeRow(const std::string& readme, const std::string& title) {
+  std::istringstream lines(readme);
+  std::string line;
+  bool inSection = false;
+  while (std::getline(lines, line)) {
+    if (line.rfind("## ", 0) == 0) inSection = line == kComparisonHeading;
+    if (!inSection || line.rfind("| " + title, 0) != 0) continue;
+    std::string body = line.substr(2);
+    if (body.size() >= 2 && body.compare(body.size() - 2, 2, " |") == 0) body.resize(body.size() - 2);
+    std::vector<std::string> cells;
+    for (size_t start = 0;;) {
+      const size_t bar = body.find(" | ", start);
+      cells.push_back(body.substr(start, bar == std::string::npos ? std::string::npos : bar - start));
+      if (bar == std::string::npos) break;
+      start = bar + 3;
+    }
+    return cells;
+  }
+  return {};
+}
+
+// A strain cell, "LABEL (N dof): -0.53 %, 1.67 ms" or "LABEL: -0.19 %": the setting's label and the
+// error as a fraction. False if the cell is not of that form.
+bool parseStrainCell(const std::string& cell, std::string& label, double& error) {
+  const size_t colon = cell.find(": ");
+  if (colon == std::string::npos || cell.rfind("**", 0) == 0) return false;
+  label = cell.substr(0, std::min(colon, cell.find(" (")));
+  const char* begin = cell.c_str() + colon + 2;
+  char* end = nullptr;
+  const double percent = std::strtod(begin, &end);
+  if (end == begin || std::strncmp(end, " %", 2) != 0) return false;
+  error = percent / 100;
+  return true;
+}
+
+std::string engineTitle(Engine engine) {
+  switch (engine) {
+    case Engine::kSplineRope: return "SplineRope";
+    case Engine::kSoftBody: return "soft body";
+    case Engine::kMuJoCo: return "MuJoCo";
+  }
+  return "?";
+}
+
+// (2): the row titled `title`, each engine's stated setting and strain error against `entries`.
+void checkStrainRow(const std::string& readme, const std::string& title, const std::string& claim,
+                    const std::vector<Entry>& entries, bool withinTarget, ClaimCheck& check) {
+  const std::vector<std::string> row = readmeRow(readme, title);
+  if (row.size() != 1 + kEngines.size()) {
+    check.fail(claim + ": no row \"" + title + "...\" with " + std::to_string(1 + kEngines.size()) +
+               " cells in the README's comparison table");
+    return;
+  }
+  for (size_t k = 0; k < kEngines.size(); ++k) {
+    const Engine engine = kEngines[k];
+    const std::string what = claim + ", " + engineTitle(engine);
+    std::string label;
+    double stated = kNaN;
+    if (!parseStrainCell(row[k + 1], label, stated)) {
+      check.fail(what + ": the README cell \"" + row[k + 1] + "\" states no setting and strain error to check");
+      continue;
+    }
+    const auto found = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) {
+      return e.engine == engine && e.setting.label() == label;
+    });
+    if (found == entries.end()) {
+      check.fail(what + ": the README states setting " + label + ", which this run did not make (quickPlan)");
+      continue;
+    }
+    const std::string about = what + " " + label + ": strain error vs W/(EA) ";
+    if (!found->trial.ok()) {
+      check.fail(about + "not measured, the run " + found->trial.status + " (README: " + percent(stated) + ")");
+      continue;
+    }
+    const double measured = metric(*found, "strain_error");
+    const std::string text = about + fmt("%+.3f %%", 100 * measured) + ", README " + percent(stated) + " ± " +
+                             fmt("%.2f %%", 100 * kClaimTolerance) + (withinTarget ? ", within 1 %" : "");
+    if (!(std::abs(measured - stated) <= kClaimTolerance) || (withinTarget && !(std::abs(measured) <= kTargetError)))
+      check.fail(text);
+    else
+      check.pass(text);
+  }
+}
+
+// (3): every thin-bar trial has the outcome the README states for its setting; SplineRope held, the
+// peers did not.
+void checkThinBar(const std::string& readme, const std::vector<Entry>& entries, ClaimCheck& check) {
+  const std::string title = "(3) thin bar";
+  const std::vector<std::string> row = readmeRow(readme, title);
+  if (row.size() != 1 + kEngines.size()) {
+    check.fail("(3) thin bar: no row \"" + title + "...\" with 4 cells in the README's comparison table");
+    return;
+  }
+  const double barTop = DrapeSpec::thinBar().drape.obstacleTop;
+  for (size_t k = 0; k < kEngines.size(); ++k) {
+    const Engine engine = kEngines[k];
+    std::map<std::string, std::string> stated;  // setting label -> outcome
+    for (size_t start = 0;;) {
+      const size_t end = row[k + 1].find("; ", start);
+      const std::string item = row[k + 1].substr(start, end == std::string::npos ? std::string::npos : end - start);
+      const size_t colon = item.find(": ");
+      if (colon != std::string::npos) stated[item.substr(0, colon)] = item.substr(colon + 2);
+      if (end == std::string::npos) break;
+      start = end + 2;
+    }
+    int checked = 0;
+    for (const Entry& e : entries) {
+      if (e.engine != engine) continue;
+      ++checked;
+      const std::string outcome = thinBarOutcome(e, barTop);
+      std::string what = "(3) thin bar, " + engineTitle(engine) + " " + e.setting.label() + ": " + outcome;
+      if (e.trial.ok()) what += fmt(" (highest point at the end %.3f m", metric(e, "highest_m")) + fmt(", bar top %.3f m)", barTop);
+      else what += fmt(" after %.3f s", e.trial.simulatedSeconds);
+      const auto it = stated.find(e.setting.label());
+      if (it == stated.end()) check.fail(what + "; the README states nothing for this setting");
+      else if (outcome != it->second) check.fail(what + "; the README states \"" + it->second + "\"");
+      else if ((engine == Engine::kSplineRope) != (outcome == "held"))
+        check.fail(what + "; the claim is that SplineRope holds the bar and no peer does");
+      else check.pass(what + ", as the README states");
+    }
+    if (checked == 0) check.fail("(3) thin bar, " + engineTitle(engine) + ": this run made no thin-bar trial");
+  }
+}
+
+// Exit status of --check: 0 when every claim holds, 1 otherwise (each failure named on stderr).
+int checkClaims(const std::string& readmePath, const Results& results) {
+  std::ifstream in(readmePath);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string readme = text.str();
+  if (!in || readme.find(kComparisonHeading) == std::string::npos) {
+    std::fprintf(stderr, "CLAIM FAILED: cannot read the section \"%s\" of %s\n", kComparisonHeading + 3,
+                 readmePath.c_str());
+    return 1;
+  }
+  ClaimCheck check;
+  checkStrainRow(readme, "(2) heavy load:", "(2) heavy load", results.byScene.at(Scene::kHeavyLoad), true, check);
+  checkStrainRow(readme, "(2) that setting with a 5 kg load", "(2) with a 5 kg load", results.loadCheck, false, check);
+  checkThinBar(readme, results.byScene.at(Scene::kThinBar), check);
+  std::fprintf(stderr, "%s: %d claim(s) of %s failed\n", check.failures() ? "FAIL" : "ok", check.failures(),
+               readmePath.c_str());
+  return check.failures() ? 1 : 0;
+}
+
 int main(int argc, char** argv) {
   Options options;
   if (const std::optional<int> exitStatus = parseArguments(argc, argv, options)) return *exitStatus;
   const Results results = runComparison(options);
   if (!writeOutputs(options, results, summaryTable(results))) return 1;
-  return smokeCheckPasses(results) ? 0 : 1;
+  const bool smokeOk = smokeCheckPasses(results);
+  const bool claimsOk = options.checkReadme.empty() || checkClaims(options.checkReadme, results) == 0;
+  return smokeOk && claimsOk ? 0 : 1;
 }
 
 }  // namespace

@@ -80,8 +80,8 @@ struct StepReport {
   // coarser rope held no energy for: then the nearby control points move by the least displacement
   // that gives that energy back (insertion_relaxation.h; docs/method.md §10). m, largest such move.
   double maxInsertionRelaxation = 0.0;
-  // J: internal energy an insertion added that its relaxation could not give back (0 in every scene
-  // measured; more than 0 means the total energy grew by this much).
+  // J: internal energy an insertion added that its relaxation could not give back (0 in the free
+  // ropes of the tests; more than 0 means the total energy grew by this much).
   double unrelaxedInsertionEnergy = 0.0;
   // The knot vector after the step is Rod::knots().
 };
@@ -429,7 +429,8 @@ class Rod {
   std::vector<double> interactions_;
   bool contactMarked_ = false;    // markContact() since the last commit (clearLoads keeps it)
   bool contactLastStep_ = false;  // the last committed step was in contact (kMechanicalOutOfContact)
-  bool freeLastStep_ = false;     // ... and nothing but pins, clamps and point masses acted on it
+  bool freeLastStep_ = false;     // it had no contact, and nothing but pins, clamps and point masses
+                                  // acted on it (adaptivity's insertions then relax)
   std::vector<double> markedInteractions_;
   bool trialValid_ = false;
   double trialStep_ = 0.0;

@@ -653,7 +653,7 @@ std::string sweepTable(const Results& results) {
     std::string accuracy;
     if (e.scene == Scene::kCatenary) accuracy = "sag error " + percent(metric(e, "sag_error"));
     else if (e.scene == Scene::kHeavyLoad) accuracy = "strain error " + percent(metric(e, "strain_error"));
-    else if (e.scene == Scene::kThinBar) accuracy = metric(e, "highest_m") > barTop - 0.1 ? "held" : "fell through";
+    else if (e.scene == Scene::kThinBar) accuracy = thinBarOutcome(e, barTop);  // an exploded run did not hold
     else if (e.scene == Scene::kDrape)
       accuracy = "penetration max " + fmt("%.2f", 1e3 * metric(e, "max_penetration_m")) + " mm, resting " +
                  fmt("%.2f", 1e3 * metric(e, "resting_penetration_m")) + " mm";

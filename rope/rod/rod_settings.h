@@ -136,9 +136,10 @@ struct RodSettings {
   // counted only the tangent's turn); straight and still, both ropes are
   // coarsened to 4 control points either way.
   double removalRelativeError = 1.0e-4;
-  // No knot span is split below twice this rest length, and no interaction knot is placed closer
-  // than this to an existing knot (about a rope diameter: finer spans resolve nothing physical, see
-  // StretchingQuadrature::kLockingFree). m, > 0.
+  // No knot span is split below twice this rest length, no interaction knot is placed closer
+  // than this to an existing knot, and no knot within twice this of an interaction is removed (a
+  // hysteresis for contacts that slide) (about a rope diameter: finer spans resolve nothing physical,
+  // see StretchingQuadrature::kLockingFree). m, > 0.
   double minKnotSpacing = 5.0e-3;
 
   // Cross-section area (m^2), linear density (kg/m), EA (N) and EI (N m^2) with the sentinels resolved.

@@ -20,6 +20,10 @@
 
 namespace rope {
 
+// One span: q points at the span's d+1 control points. If force is not null, adds -dE/dq to
+// force[0..d]. Returns sum plus the span's energy (J), term by term, so that the whole-rod energy is
+// one running sum over all spans (the same rounding whether summed here or by a caller).
+double bendingSpan(const SpanView& span, const Vec3* q, Vec3* force, double sum = 0.0);
 // J (the integrals carry EI).
 double bendingEnergy(const RodIntegrals& integrals, const PointList& q);
 // forces resized to q.size() and overwritten with -K_b q.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rope/rod/bending_energy.h"
 #include "rope/rod/stretching_energy.h"
 #include "rope/spline/bspline_basis.h"
 
@@ -33,6 +34,7 @@ double localInternalEnergy(const RodIntegrals& integrals, double axialStiffness,
     for (int a = 0; a < local; ++a) forces[a].setZero();
     energy += stretchingSpan(span, q, axialStiffness, StiffnessMode::kClamped, forces,
                              hessian != nullptr ? blocks : nullptr);
+    energy = bendingSpan(span, q, forces, energy);
     if (hessian != nullptr) {
       for (int a = 0; a < local; ++a)
         for (int b = 0; b <= a; ++b) {
@@ -42,12 +44,8 @@ double localInternalEnergy(const RodIntegrals& integrals, double axialStiffness,
           if (b != a) hessian->block<3, 3>(3 * (at + b), 3 * (at + a)) += block.transpose();
         }
     }
-    // Bending (bending_energy.h), measured from a local origin as there.
-    for (int a = 0; a < local; ++a) {
-      Vec3 row = Vec3::Zero();
-      for (int b = 0; b < local; ++b) row += span.bending[a * local + b] * (q[b] - q[0]);
-      energy += 0.5 * (q[a] - q[0]).dot(row);
-      if (gradient != nullptr) (*gradient)[static_cast<size_t>(j - firstSpan + a)] += row - forces[a];
+    if (gradient != nullptr) {
+      for (int a = 0; a < local; ++a) (*gradient)[static_cast<size_t>(at + a)] -= forces[a];
     }
   }
   return energy;
@@ -210,15 +208,21 @@ InsertionRelaxation relaxInsertion(const KnotVector& knots, const RodIntegrals& 
     total.remaining = 0.0;
     return total;
   }
-  const PointList start(points);
+  // Only points[first - kMaxWidening .. last + kMaxWidening] can move.
+  const int from = std::max(0, first - kMaxWidening);
+  const int to = std::min(static_cast<int>(points.size()) - 1, last + kMaxWidening);
+  if (to < from) return total;
+  const PointList start(points.begin() + from, points.begin() + to + 1);
   for (int widening = 0; widening <= kMaxWidening && total.remaining > 0.0; ++widening) {
     const InsertionRelaxation attempt = relaxWindow(knots, integrals, axialStiffness, total.remaining, first - widening,
                                                     last + widening, rows, pointMasses, points);
     total.iterations += attempt.iterations;
     total.remaining = attempt.remaining;
   }
-  for (size_t i = 0; i < points.size(); ++i)
-    total.displacement = std::max(total.displacement, (points[i] - start[i]).norm());
+  for (int i = from; i <= to; ++i) {
+    total.displacement = std::max(total.displacement,
+                                  (points[static_cast<size_t>(i)] - start[static_cast<size_t>(i - from)]).norm());
+  }
   return total;
 }
 

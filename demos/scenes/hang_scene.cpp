@@ -16,7 +16,6 @@ RodSettings HangSceneSettings::defaultRod() {
   RodSettings rod;
   rod.radius = 0.01;
   rod.youngsModulus = 2.0e8;
-  rod.massDamping = 0.4;
   rod.initialControlPoints = 12;
   return rod;
 }

@@ -203,5 +203,43 @@ TEST(RodCatenary, SoftRopeAgreesWithTheElasticCatenary) {
               rod.controlPointCount());
 }
 
+// Open (issue 17): the comparison's catenary rope (README, "Compared with ..."; 1.25 m, r = 1 cm,
+// E = 2e8 Pa, EI = 0) on default damping (none) at 256 fixed control points, its pins drawn from
+// 1.25 m to 1 m apart over 1 s (smoothstep), 2 s. The fall can give the rope at most m g times the
+// sag (0.45 kg * 9.81 * 0.332 m = 1.47 J); it takes 0.097 J at 12 to 128 points. Measured at 256:
+// 17.6 J; at 512: 7.5 J; at 1024: 2.5 J by step 42, 12.3 J at step 100 and "stretched past
+// kMaxStepStretch" at step 129. At 1024, backward Euler, the exact stretching rule and a mass
+// damping of 0.4 /s each stay at 0.094-0.097 J. The locking-free rule samples the strain once per
+// span, so the control polygon's span-scale zig-zag has no stretching stiffness; with no bending
+// stiffness only the step's clamped geometric stiffness acts on it, and the rope, compressed while
+// its pins close, buckles into it faster than BDF2 damps. (The default maxControlPoints is 128.)
+TEST(RodCatenary, FlexibleRopeAt256PointsStaysBoundedWhileItsPinsClose) {
+  RodSettings settings;
+  settings.restLength = kLength;
+  settings.radius = 0.01;
+  settings.youngsModulus = 2.0e8;
+  settings.bendingStiffness = 0.0;
+  settings.adaptive = false;
+  settings.initialControlPoints = 256;
+  settings.maxControlPoints = 256;
+  const double h = 1.0 / 240.0, closeTime = 1.0;
+  Rod rod = Rod::fromSegment(settings, Vec3(-0.5 * kLength, 0, 0), Vec3(0.5 * kLength, 0, 0));
+  const int left = rod.pin(rod.beginParameter());
+  const int right = rod.pin(rod.endParameter());
+  const double bound = rod.mass() * kG * inextensibleSag(kSpan, kLength);
+  double most = 0.0;
+  for (int i = 1; i <= 2 * 240; ++i) {
+    const double u = std::min(1.0, i * h / closeTime);
+    const double half = 0.5 * (kLength + (kSpan - kLength) * u * u * (3.0 - 2.0 * u));
+    rod.setPinTarget(left, Vec3(-half, 0, 0));
+    rod.setPinTarget(right, Vec3(half, 0, 0));
+    const StepReport report = rod.step(h);
+    ASSERT_TRUE(report.ok) << "step " << i << ": " << report.failure;
+    most = std::max(most, rod.kineticEnergy());
+    ASSERT_LT(rod.kineticEnergy(), bound) << "step " << i;
+  }
+  std::printf("[flexible 256] most kinetic energy %.3g J (bound %.3g J)\n", most, bound);
+}
+
 }  // namespace
 }  // namespace rope

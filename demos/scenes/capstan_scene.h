@@ -59,7 +59,8 @@ struct CapstanSceneSettings {
 
   // 5 mm radius limp cord (E = 1e8 Pa: EA = 7.85 kN, so 10 N stretches it by 0.13 %), perfectly
   // flexible (EI = 0) and weightless (gravity 0), with stiffness damping 1e-3 s against stretching
-  // waves (it does not resist sliding, unlike mass damping).
+  // waves. Its tension term also damps the rope's rigid sliding round the support (capstan_scene.cpp
+  // says what that holds).
   static RodSettings defaultRod();
   double effectiveHelixPitch() const;
   // The contact radius of the rope on the support (centre line to axis), m.

@@ -18,7 +18,7 @@ RodSettings HangSceneSettings::defaultRod() {
   rod.youngsModulus = 2.0e8;
   // Not needed by the scene (its rope settles the same without it: kinetic energy 4e-17 J by 4 s either
   // way), but the comparison's catenary and scaling scenes use this rope and give the peers the same
-  // damping; undamped, that rope (EI = 0) grows unstable at 512-1024 fixed control points (README,
+  // damping; undamped, that rope (EI = 0) grows unstable at 256 and more fixed control points (README,
   // known limits). Measured 2026-11-28.
   rod.massDamping = 0.4;
   rod.initialControlPoints = 12;

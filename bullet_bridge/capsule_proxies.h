@@ -15,9 +15,13 @@
 // convexSweepTest) already walks compounds child by child, so ropes show up in them with no query
 // code of ours. The leaves are swept boxes, not the capsules' tight boxes: each covers the capsule
 // over the coming step (a dynamic rope: positions + h * velocity, in every direction) or over the
-// step just made (a kinematic rope: where the capsule was and is), padded by the radius, the
-// speculative margin and the curve's bulge over the chord, and kept a little fatter (kLeafSlack) so
-// that a rope at rest never touches its tree. The object's broadphase box is the tree's root. The
+// step just made (a kinematic rope: where the capsule was and is), padded by the radius and the
+// curve's bulge over the chord, and kept a little fatter (kLeafSlack) so that a rope at rest never
+// touches its tree. A kinematic rope's leaves also carry its speculative margin. A dynamic rope's
+// carry only the rope-rope share of it (0.55 radii; capsule_proxies.cpp, kRopeReachShare), and the
+// rest of its margin is added to the object's broadphase box (the tree's root) and to every body
+// query (capsulesOverlapping), so that a knot's tree-against-tree search meets fewer distant pairs
+// while bodies still meet every capsule within the margin. The
 // object carries CF_STATIC_OBJECT | CF_NO_CONTACT_RESPONSE and stays active (DISABLE_DEACTIVATION).
 // A dynamic rope's pairs go to the bridge through Bullet's dispatcher (rope_dispatch.h), which runs
 // no narrowphase or solver contact for them. A kinematic rope finds the bodies it pushes itself
@@ -86,8 +90,8 @@ class CapsuleProxies {
   // and changes nothing then.
   void rebuild(const std::vector<double>& ends, const std::vector<btVector3>& axis);
   // Rebuilds, places the compound's capsule children, then sets each capsule's tree leaf to cover the capsule now and after predictionTime
-  // (s) of the rod's current velocities, padded by margin (m), and the object's box to the tree's
-  // root. A leaf Bullet would drop as too large (diagonal^2 >= 1e12 m^2, its "overflow in AABB"
+  // (s) of the rod's current velocities, padded as the header says for a speculative margin of
+  // `margin` (m), and the object's box to the tree's root grown by the rest of the margin. A leaf Bullet would drop as too large (diagonal^2 >= 1e12 m^2, its "overflow in AABB"
   // rule) is not applied; the count is returned (all capsules if the whole rope's box is too large).
   int updateBoxes(const Rod& rod, double predictionTime, double margin);
   // The same, but the object's new box reaches Bullet's broadphase only at the next
@@ -118,8 +122,9 @@ class CapsuleProxies {
   const RopeShape& shape() const { return *shape_; }
   // The midphase tree (leaves: swept capsule boxes; leaf->dataAsInt = capsule index).
   const btDbvt& tree() const { return *shape_->getDynamicAabbTree(); }
-  // Midphase: the capsules whose leaves meet the box [lo, hi] (world frame), in increasing order, into
-  // `out` (cleared first); `stack` is the traversal's scratch.
+  // Midphase: the capsules whose leaves meet the box [lo, hi] (world frame) grown by the part of the
+  // speculative margin the leaves do not carry, in increasing order, into `out` (cleared first);
+  // `stack` is the traversal's scratch.
   void capsulesOverlapping(const btVector3& lo, const btVector3& hi, std::vector<int>& out, btNodeStack& stack) const;
 
   // The rope a collision object is, or nullptr if it is not a dynamic rope's object.
@@ -149,6 +154,10 @@ class CapsuleProxies {
   std::unique_ptr<btCollisionObject> object_;
   btCollisionWorld* world_ = nullptr;
   bool boxUnannounced_ = false;  // updateBoxesDeferred set a box the broadphase has not seen yet
+  // m: added to the object's broadphase box and to every capsulesOverlapping query, the part of the
+  // speculative margin the leaves do not carry (capsule_proxies.cpp, kRopeReachShare); 0 for proxies
+  // whose leaves the caller fits (kinematic ropes).
+  btScalar queryPad_ = 0;
 };
 
 }  // namespace rope::bullet

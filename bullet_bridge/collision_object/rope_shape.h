@@ -7,7 +7,8 @@
 // index. The compound's own btDbvt is the rope's midphase tree; its leaves are not the capsules'
 // tight boxes but the swept capsule boxes of the coming step (CapsuleProxies::updateBoxes), which
 // contain them, so Bullet's queries stay exact and the bridge's midphase finds every pair the step
-// can close. getAabb() returns the union of those leaves: the broadphase sees one box per rope.
+// can close. getAabb() returns the union of those leaves, grown by the part of the speculative margin
+// the leaves do not carry (CapsuleProxies): the broadphase sees one box per rope.
 // Not API: installed only because capsule_proxies.h holds it; may change in any release.
 
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>

@@ -14,7 +14,8 @@
 //             re-bounds sliding friction where the normal force still moved by more than 5 %; true
 //             if the trial must be solved again;
 //   finish()  after the final trial: the equal and opposite impulse on every dynamic body, the
-//             records, the anchors for the next substep, and the knots the contact geometry needs.
+//             records, the anchors for the next substep, the knots the contact geometry needs, and
+//             caps on the coming knot removals where friction holds a load (Rod::limitShapeChange).
 //
 // Adaptivity follows geometry, not touch: a rope lying along a surface asks for no knot (its
 // samples are not interaction points). A touching stretch much shorter than the knot span around it
@@ -107,6 +108,9 @@ class BodyContacts {
   // Where the body receives a sample's impulse: its body point moved on with the rope's slide.
   static btVector3 bodyPointAfter(const Sample& sample, const Vec3& slip, double radius, double h);
   void markConcentratedLoads(Rod& rod, double ratio) const;
+  // Caps the knot removals of the coming commit near a sample that holds a load by friction (its
+  // end-of-step force `force`, N): Rod::limitShapeChange.
+  static void limitShapeChangeWhereFrictionHolds(Rod& rod, double s, const Vec3& force, const Sample& sample);
 
   LineContactSampler sampler_;
   std::vector<ContactSample> scratch_;

@@ -65,10 +65,6 @@ RodSettings CapstanSceneSettings::defaultRod() {
   rod.youngsModulus = 1.0e8;
   rod.bendingStiffness = 0.0;
   rod.gravity = Vec3::Zero();
-  // Without it the 2 pi, mu 0.5 hold at 0.9 exp(mu theta) slips at 0.31 m/s (measured 2026-11-28):
-  // the hold relies in part on beta K's tension term, which damps a tensioned rope's rigid sliding
-  // round the drum (docs/method.md §11; README, known limits).
-  rod.stiffnessDamping = 1.0e-3;
   return rod;
 }
 

@@ -58,9 +58,7 @@ struct CapstanSceneSettings {
   bullet::BulletRopeSettings bridge;  // friction is overwritten by `friction` above
 
   // 5 mm radius limp cord (E = 1e8 Pa: EA = 7.85 kN, so 10 N stretches it by 0.13 %), perfectly
-  // flexible (EI = 0) and weightless (gravity 0), with stiffness damping 1e-3 s against stretching
-  // waves. Its tension term also damps the rope's rigid sliding round the support (capstan_scene.cpp
-  // says what that holds).
+  // flexible (EI = 0) and weightless (gravity 0), on the rope's default damping (none).
   static RodSettings defaultRod();
   double effectiveHelixPitch() const;
   // The contact radius of the rope on the support (centre line to axis), m.

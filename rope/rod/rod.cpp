@@ -471,6 +471,7 @@ void Rod::clearLoads() {
   loads_.clear();
   springs_.clear();
   markedInteractions_.clear();
+  pendingShapeLimits_.clear();
   trialValid_ = false;
 }
 
@@ -611,6 +612,13 @@ void Rod::markInteraction(double s) {
   markedInteractions_.push_back(s);
 }
 
+void Rod::limitShapeChange(double s, double maxChange) {
+  validateParameter(s);
+  if (!(std::isfinite(maxChange) && maxChange >= 0.0))
+    throw InvalidArgument("maxChange", formatValue(maxChange), "must be finite and >= 0");
+  pendingShapeLimits_.push_back({s, maxChange});
+}
+
 StepReport Rod::commitTrial() {
   if (!trialValid_) throw InvalidArgument("trial", "none", "solveTrial() must have succeeded since the last change");
   StepReport report;
@@ -626,6 +634,10 @@ StepReport Rod::commitTrial() {
   for (const PointLoad& load : loads_) interactions_.push_back(load.parameter);
   for (const Spring& spring : springs_)
     if (spring.interaction) interactions_.push_back(spring.parameter);
+  shapeLimits_.swap(pendingShapeLimits_);
+  pendingShapeLimits_.clear();
+  std::sort(shapeLimits_.begin(), shapeLimits_.end(),
+            [](const ShapeLimit& a, const ShapeLimit& b) { return a.parameter < b.parameter; });
   interactions_.insert(interactions_.end(), markedInteractions_.begin(), markedInteractions_.end());
   contactLastStep_ = contactMarked_;
   contactMarked_ = false;
@@ -957,6 +969,7 @@ void Rod::prefetch() const {
   prefetchVector(springs_);
   system_.prefetch();
   prefetchVector(rows_);
+  prefetchVector(shapeLimits_);
   prefetchVector(rhs_);
   prefetchVector(force_);
   prefetchVector(stiffnessTimesV_);

@@ -255,6 +255,11 @@ class Rod {
   void correctTrial(const double* dv);
   // A knot at s after the coming commit, as for a load (adaptivity's interaction criterion).
   void markInteraction(double s);
+  // At the coming commit, adaptivity may move C(s) by at most maxChange (m, finite, >= 0): a knot
+  // removal whose shape error near s is larger is not made. For a contact that holds a load by
+  // friction, which a sudden move of the curve against its stiff penalty spring would kick loose
+  // (docs/method.md §10). Throws InvalidArgument naming s or maxChange.
+  void limitShapeChange(double s, double maxChange);
   // The coming step is in contact (the bridge: body contact candidates, or rope-rope contact in the
   // last substep): after it, RemovalCriterion::kMechanicalOutOfContact removes knots by kPolygon.
   void markContact() { contactMarked_ = true; }
@@ -427,6 +432,16 @@ class Rod {
   std::vector<double> bend_;
   std::vector<int> spans_;
   std::vector<double> interactions_;
+  // Caps on how far adaptivity may move the curve (limitShapeChange): queued for the coming commit,
+  // and the committed step's, by parameter, which adapt() reads.
+  struct ShapeLimit {
+    double parameter;
+    double change;  // m
+  };
+  std::vector<ShapeLimit> pendingShapeLimits_;
+  std::vector<ShapeLimit> shapeLimits_;
+  // The largest curve change (m) a removal that changes the curve on (from, to) may make.
+  double shapeChangeLimit(double from, double to, double bound) const;
   bool contactMarked_ = false;    // markContact() since the last commit (clearLoads keeps it)
   bool contactLastStep_ = false;  // the last committed step was in contact (kMechanicalOutOfContact)
   bool freeLastStep_ = false;     // it had no contact, and nothing but pins, clamps and point masses

@@ -18,7 +18,8 @@ namespace {
 
 // What a removal asks of the side its sweep runs from, except the length error that picks the side.
 struct RemovalLimits {
-  double shape = 0.0;            // m: the curve's and the rest curve's change
+  double shape = 0.0;            // m: the rest curve's change, and the curve's where nothing caps it
+  double curveShape = 0.0;       // m: the curve's change (shape, or less where limitShapeChange caps it)
   double velocity = 0.0;         // m/s: the velocity field's change
   double insertThreshold = 0.0;  // bend measure above which the coarser polygon would refine at once
   bool mechanical = false;       // RemovalCriterion::kMechanical applies in this step
@@ -37,7 +38,7 @@ struct RemovalSide {
 RemovalSide checkSide(const KnotRemoval& plan, const PointList& rest, const PointList& points,
                       const PointList& velocities, const RodIntegrals& integrals, const RemovalLimits& limits) {
   RemovalSide side;
-  if (!(plan.chosenShapeError() <= limits.shape)) return side;
+  if (!(plan.chosenShapeError() <= limits.curveShape)) return side;
   if (!(localRemoval(plan, rest).error <= limits.shape)) return side;
   // Look ahead: the polygon after removal must not qualify for insertion at once.
   side.points = localRemoval(plan, points);
@@ -182,6 +183,14 @@ double Rod::applyRemoval(const KnotRemoval& plan) {
   return correction.norm();
 }
 
+double Rod::shapeChangeLimit(double from, double to, double bound) const {
+  // The tightest cap queued (limitShapeChange) on the parameters the removal changes.
+  const auto first = std::lower_bound(shapeLimits_.begin(), shapeLimits_.end(), from,
+                                      [](const ShapeLimit& limit, double s) { return limit.parameter < s; });
+  for (auto it = first; it != shapeLimits_.end() && it->parameter < to; ++it) bound = std::min(bound, it->change);
+  return bound;
+}
+
 bool Rod::isNearInteraction(double s) const {
   // Within twice minKnotSpacing (rest length) of a point something acts on: the knot that carries that
   // point's local freedom. An exact match alone is not enough: a contact slides a little every step,
@@ -236,6 +245,7 @@ void Rod::adapt(StepReport& report) {
                           (settings_.removalCriterion == RemovalCriterion::kMechanicalOutOfContact && !contactLastStep_);
   RemovalLimits limits;
   limits.shape = bound;
+  limits.curveShape = bound;
   limits.velocity = settings_.removalVelocityErrorBound;
   limits.insertThreshold = insertThreshold;
   limits.mechanical = mechanical;
@@ -263,8 +273,11 @@ void Rod::adapt(StepReport& report) {
     // Most straight-looking candidates in a bent rope fail the shape bound: reject those on the cheap
     // shape errors alone before integrating length errors (profile of the knot scene: 28 % of the
     // step in planKnotRemoval before).
+    limits.curveShape = shapeLimits_.empty()
+                            ? bound
+                            : shapeChangeLimit(knots_[std::max(0, r - d)], knots_[std::min(knots_.size() - 1, r + d)], bound);
     const KnotRemoval shape = planKnotRemovalShape(knots_, points_, t);
-    if (!(std::min(shape.shapeError[0], shape.shapeError[1]) <= bound)) continue;
+    if (!(std::min(shape.shapeError[0], shape.shapeError[1]) <= limits.curveShape)) continue;
     // Every check but the length error, on both sides: the length errors only where one could pass
     // (checkSide), and then the side they pick must (the same computation as its check here).
     const RemovalSide left = checkSide(shape, KnotRemoval::kFromLeft, rest_, points_, velocities_, integrals_, limits);

@@ -184,3 +184,79 @@ TEST(Adaptivity, RemovalWaitsForAVelocityFieldTheCoarserSplineCanCarry) {
 
 }  // namespace
 }  // namespace rope
+
+namespace rope {
+namespace {
+
+// A straight, still, weightless rope of 16 control points with a 2 um zigzag (far under
+// removalErrorBound, a polygon the removal threshold calls straight), in contact (kPolygon removal):
+// each removal moves its curve by a small, non-zero shape error.
+Rod zigzagRopeInContact() {
+  RodSettings settings;
+  settings.gravity = Vec3::Zero();
+  settings.initialControlPoints = 16;
+  settings.minControlPoints = 4;
+  Rod rod = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  PointList points = rod.controlPoints();
+  for (size_t i = 0; i < points.size(); ++i) points[i].y() += (i % 2 == 0 ? 1e-6 : -1e-6);
+  rod.setControlPoints(points);
+  rod.markContact();
+  return rod;
+}
+
+// Rod::limitShapeChange caps the removals of the coming commit near s (a contact whose friction holds
+// a load, docs/method.md §10), only there, and only for that commit.
+TEST(Adaptivity, LimitShapeChangeKeepsTheKnotsNearTheCappedPointsForOneCommit) {
+  Rod free = zigzagRopeInContact();
+  const StepReport unlimited = free.step(1e-6);
+  ASSERT_TRUE(unlimited.ok);
+  ASSERT_GT(unlimited.removals, 0);
+  ASSERT_GT(unlimited.maxRemovalError, 0.0);
+
+  // Capped to 0 over the first half: no removal changes the curve there; the second half coarsens.
+  Rod capped = zigzagRopeInContact();
+  const std::vector<double> knotsBefore = capped.knots().values();
+  for (int i = 0; i <= 50; ++i) capped.limitShapeChange(0.01 * i, 0.0);
+  const StepReport report = capped.step(1e-6);
+  ASSERT_TRUE(report.ok);
+  EXPECT_GT(report.removals, 0);
+  EXPECT_LT(report.removals, unlimited.removals);
+  const std::vector<double> knotsAfter = capped.knots().values();
+  for (double knot : knotsBefore) {
+    if (knot > 0.5) continue;
+    EXPECT_NE(std::find(knotsAfter.begin(), knotsAfter.end(), knot), knotsAfter.end()) << "knot " << knot << " removed";
+  }
+
+  // A cap the removals stay within changes nothing (bitwise the same as no cap).
+  Rod loose = zigzagRopeInContact();
+  for (int i = 0; i <= 100; ++i) loose.limitShapeChange(0.01 * i, 1.0);
+  ASSERT_TRUE(loose.step(1e-6).ok);
+  EXPECT_TRUE(test::sameState(test::RodSnapshot(free), test::RodSnapshot(loose)));
+
+  // The caps were for that commit only: the next one coarsens the first half too.
+  capped.markContact();
+  const StepReport next = capped.step(1e-6);
+  ASSERT_TRUE(next.ok);
+  EXPECT_GT(next.removals, 0);
+}
+
+TEST(Adaptivity, LimitShapeChangeRejectsBadInputNamingTheParameter) {
+  Rod rod = zigzagRopeInContact();
+  const double nan = std::nan("");
+  test::expectEachCallRejected(rod, {
+                                        {"s", [](Rod& r) { r.limitShapeChange(-0.1, 1e-6); }},
+                                        {"s", [](Rod& r) { r.limitShapeChange(1.5, 1e-6); }},
+                                        {"s", [nan](Rod& r) { r.limitShapeChange(nan, 1e-6); }},
+                                        {"maxChange", [](Rod& r) { r.limitShapeChange(0.5, -1e-9); }},
+                                        {"maxChange", [nan](Rod& r) { r.limitShapeChange(0.5, nan); }},
+                                        {"maxChange", [](Rod& r) { r.limitShapeChange(0.5, INFINITY); }},
+                                    });
+  // Nothing was queued: the step is bitwise a step without the calls.
+  Rod twin = zigzagRopeInContact();
+  ASSERT_TRUE(rod.step(1e-6).ok);
+  ASSERT_TRUE(twin.step(1e-6).ok);
+  EXPECT_TRUE(test::sameState(test::RodSnapshot(twin), test::RodSnapshot(rod)));
+}
+
+}  // namespace
+}  // namespace rope

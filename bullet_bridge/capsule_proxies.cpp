@@ -115,7 +115,7 @@ void CapsuleProxies::setFilter(int group, int mask) {
 }
 
 void CapsuleProxies::addCapsule() {
-  capsuleShapes_.push_back(std::make_unique<RopeCapsuleShape>(radius_));
+  capsuleShapes_.push_back(std::make_unique<RopeCapsuleShape>(radius_, static_cast<int>(capsuleShapes_.size())));
   btTransform identity;
   identity.setIdentity();
   shape_->addChildShape(identity, capsuleShapes_.back().get());

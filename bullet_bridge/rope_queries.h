@@ -55,8 +55,8 @@ struct RayHit {
 
 // Closest rope surface crossed by the segment from -> to (rays starting inside a rope capsule do not
 // hit that capsule): the world's ropes and the kinematic ropes of its Bullet world (KinematicRope),
-// exact where Bullet's own rayTest is as precise as its convex cast. Throws InvalidArgument("from"/"to")
-// for non-finite points.
+// exact on the capsules (as Bullet's own rayTest on a rope is: collision_object/rope_shape.h). Throws
+// InvalidArgument("from"/"to") for non-finite points.
 std::optional<RayHit> rayTestRopes(const RopeWorld& world, const btVector3& from, const btVector3& to);
 // Closest hit over the world's bodies (Bullet's closest-hit rayTest) and its ropes.
 std::optional<RayHit> rayTest(const RopeWorld& world, const btVector3& from, const btVector3& to);

@@ -88,6 +88,7 @@ set(SPLINEROPE_BULLET_BRIDGE_INTERNAL_HEADERS
   bullet_bridge/narrowphase/concave_contact.h
   bullet_bridge/narrowphase/segment_convex_distance.h
   bullet_bridge/narrowphase/segment_segment_distance.h
+  bullet_bridge/narrowphase/ray_capsule.h
   bullet_bridge/narrowphase/segment_triangle_distance.h
   bullet_bridge/contact/distributed_loads.h
   bullet_bridge/detail/bullet_math.h

@@ -9,9 +9,12 @@
 // until Bullet drops the pair (and destroys the algorithm with it: boxes apart, an object removed,
 // the world destroyed). The RopeWorld's substep reads that list, re-checking each pair's overlap (the
 // pair cache drops pairs lazily). Every other pair, compounds of the user's included, goes to the
-// create function that was in the dispatcher before (restored when the RopeWorld goes). Bullet's closest-point
-// table (contactTest, contactPairTest) is left alone, so those queries run Bullet's compound
-// algorithm over the rope's capsules.
+// create function that was in the dispatcher before (restored when the RopeWorld goes). In both of
+// Bullet's tables the RopeWorld also takes the entries of a rope's capsule child
+// (FAST_CONCAVE_MESH_PROXYTYPE, rope_shape.h) against every type, which Bullet's compound algorithm
+// dispatches when a query (contactTest, contactPairTest) reaches the rope's capsules: for a pair with a
+// RopeCapsuleShape it runs the algorithm Bullet would run for a btCapsuleShape of the same size in its
+// place; every other pair goes to the previous entry. So those queries run Bullet's own algorithms over the rope's capsules as before.
 //
 // Why create functions and not a near callback: a btNearCallback is a plain function pointer with no
 // user data, so chaining the user's callback would need a global registry, and a dispatch table

@@ -3,6 +3,7 @@
 // capsules follow the adaptive spline in the broadphase, dynamic bodies in the sweep are pushed out
 // one-way (the rope moves exactly as without them), static bodies are passed through, bad input is
 // rejected without changing anything, twin runs are bitwise identical.
+#include "bullet_bridge/collision_object/rope_shape.h"
 #include "bullet_bridge/kinematic_rope.h"
 
 #include <gtest/gtest.h>
@@ -246,15 +247,16 @@ TEST(KinematicRope, CapsulesFollowTheAdaptiveSplineInOneCollisionObject) {
     ASSERT_EQ(compound.getNumChildShapes(), count);
     const btVector3& lo = object.getBroadphaseHandle()->m_aabbMin;
     const btVector3& hi = object.getBroadphaseHandle()->m_aabbMax;
-    // Each capsule is compound child c (a capsule shape on its axis, as Bullet's queries see it),
-    // inside its tree leaf and the object's box, and the capsules join up.
+    // Each capsule is compound child c (the rope's capsule shape on its axis, as Bullet's queries see
+    // it), inside its tree leaf and the object's box, and the capsules join up.
     for (int c = 0; c < count; ++c) {
       const Capsule capsule = rope.capsule(c);
-      const auto* child = static_cast<const btCapsuleShape*>(compound.getChildShape(c));
-      ASSERT_EQ(child->getShapeType(), CAPSULE_SHAPE_PROXYTYPE);
-      ASSERT_EQ(child->getRadius(), capsule.radius);
+      const auto* child = dynamic_cast<const RopeCapsuleShape*>(compound.getChildShape(c));
+      ASSERT_NE(child, nullptr);
+      ASSERT_EQ(child->index(), c);
+      ASSERT_EQ(child->radius(), capsule.radius);
       const btTransform& placed = compound.getChildTransform(c);
-      const btVector3 upAxis = placed.getBasis().getColumn(1) * child->getHalfHeight();
+      const btVector3 upAxis = placed.getBasis().getColumn(1) * child->halfHeight();
       const btVector3 ends[2] = {placed.getOrigin() - upAxis, placed.getOrigin() + upAxis};
       ASSERT_LT((ends[0] - capsule.a).length(), 1e-12);
       ASSERT_LT((ends[1] - capsule.b).length(), 1e-12);

@@ -14,8 +14,10 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <random>
 #include <vector>
 
+#include "bullet_bridge/detail/bullet_math.h"
 #include "bullet_bridge/rope_queries.h"
 #include "bullet_bridge/rope_world.h"
 #include "demos/scenes/drape_scene.h"
@@ -63,12 +65,11 @@ class RopeCollisionObject : public ::testing::Test {
   std::unique_ptr<RopeObject> rope_;
 };
 
-// Bullet's rayTest casts a point against each convex child with its subsimplex convex cast, which
-// stops after 64 iterations on a curved surface: its hit is a few micrometres to 0.4 mm off a 1 cm
-// capsule (measured: 3e-6 to 4e-4 m), as for any other convex shape in Bullet. The bound below is
-// that of Bullet's cast; the point, normal and s to 1e-6 m come from ropeHit's capsule and from
-// rope::bullet::rayTest (exact ray-capsule), checked against the analytic surface here too.
-constexpr double kBulletRayCastTolerance = 1e-3;  // m
+// Bullet's rayTest reaches each capsule child through processAllTriangles with its ray callback, where
+// the rope's capsule shape answers in closed form (collision_object/rope_shape.h): the hit is on the
+// analytic surface to 1e-6 m, as rope::bullet::rayTest's. (As btCapsuleShape children, Bullet's
+// subsimplex convex cast put it 3e-6 to 4e-4 m off a 1 cm capsule, measured.)
+constexpr double kBulletRayCastTolerance = kSurfaceTolerance;  // m
 
 TEST_F(RopeCollisionObject, BulletRayTestHitsTheRopeAndRayTestIsExact) {
   const double radius = rope_->rod().settings().radius;
@@ -82,6 +83,9 @@ TEST_F(RopeCollisionObject, BulletRayTestHitsTheRopeAndRayTestIsExact) {
     ASSERT_EQ(ray.m_collisionObject, &rope_->collisionObject());
     const btVector3 p = ray.m_hitPointWorld;
     EXPECT_NEAR(static_cast<double>(p.y()), analyticY, kBulletRayCastTolerance) << x;
+    EXPECT_NEAR(static_cast<double>(ray.m_closestHitFraction), (2.0 - analyticY) / 2.0, kBulletRayCastTolerance / 2.0);
+    const btVector3 analyticNormal = btVector3(0, static_cast<btScalar>(analyticY - 1), static_cast<btScalar>(z)) / radius;
+    EXPECT_GT(static_cast<double>(ray.m_hitNormalWorld.dot(analyticNormal)), 1.0 - 1e-9) << x;
     ASSERT_GE(ray.child, 0);
     EXPECT_LT(std::abs(surfaceGap(*rope_, ray.child, p)), kBulletRayCastTolerance);
     // s from the child index and from the point alone: within one capsule of the truth.
@@ -102,6 +106,67 @@ TEST_F(RopeCollisionObject, BulletRayTestHitsTheRopeAndRayTestIsExact) {
     const btVector3 normal = btVector3(0, static_cast<btScalar>(analyticY - 1), static_cast<btScalar>(z)) / radius;
     EXPECT_GT(static_cast<double>(exact->normal.dot(normal)), 1.0 - 1e-9);
   }
+}
+
+// On a bent rope, from every side: Bullet's rayTest and rope::bullet::rayTest find the same capsule
+// and point (both exact: rope_shape.h, ray_capsule.h), on the capsule's analytic surface.
+TEST(RopeCollisionObjectWorld, BulletRayTestOnABentRopeMatchesTheExactQuery) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  PointList arc;
+  for (int i = 0; i <= 12; ++i) {
+    const double angle = 0.5 * 3.14159265358979323846 * i / 12;
+    arc.emplace_back(0.3 * std::cos(angle), 1.0 + 0.3 * std::sin(angle), 0.05 * std::sin(3 * angle));
+  }
+  RopeObject rope(Rod::fromPolyline(straightRod(), arc, Rod::RestShape::kAsGiven));
+  physics.ropes().addRope(rope);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), along(0.0, 1.0);
+  int hits = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Rod& rod = rope.rod();
+    const double s = rod.beginParameter() + along(random) * (rod.endParameter() - rod.beginParameter());
+    const Vec3 aim = rod.position(s) + 0.012 * Vec3(unit(random), unit(random), unit(random));
+    Vec3 direction(unit(random), unit(random), unit(random));
+    direction.normalize();
+    const btVector3 from = toBullet(aim - 0.5 * direction), to = toBullet(aim + 0.5 * direction);
+    ChildRayCallback bulletRay(from, to);
+    physics.world().rayTest(from, to, bulletRay);
+    const auto exact = rayTest(physics.ropes(), from, to);
+    ASSERT_EQ(bulletRay.hasHit(), exact.has_value()) << i;
+    if (!exact) continue;
+    ++hits;
+    EXPECT_LT(static_cast<double>((bulletRay.m_hitPointWorld - exact->point).length()), 1e-9) << i;
+    EXPECT_LT(std::abs(surfaceGap(rope, bulletRay.child, bulletRay.m_hitPointWorld)), kSurfaceTolerance) << i;
+    EXPECT_GT(static_cast<double>(bulletRay.m_hitNormalWorld.dot(exact->normal)), 1.0 - 1e-9) << i;
+  }
+  EXPECT_GT(hits, 100);
+}
+
+// Bullet's contactPairTest between two crossing ropes: both capsule children stand in as Bullet's
+// btCapsuleShape (rope_dispatch.h), so the overlap is the capsules' to Bullet's GJK/EPA precision.
+TEST(RopeCollisionObjectWorld, BulletContactPairTestBetweenTwoRopes) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  const double radius = straightRod().radius, overlap = 0.005;
+  RopeObject first(Rod::fromSegment(straightRod(), Vec3(0, 1, 0), Vec3(1, 1, 0)));
+  RopeObject second(Rod::fromSegment(straightRod(), Vec3(0.5, 1 + 2 * radius - overlap, -0.5),
+                                     Vec3(0.5, 1 + 2 * radius - overlap, 0.5)));
+  physics.ropes().addRope(first);
+  physics.ropes().addRope(second);
+  struct Deepest : btCollisionWorld::ContactResultCallback {
+    btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper*, int, int,
+                             const btCollisionObjectWrapper*, int, int) override {
+      ++count;
+      distance = std::min(distance, static_cast<double>(point.getDistance()));
+      return 0;
+    }
+    int count = 0;
+    double distance = std::numeric_limits<double>::infinity();
+  } result;
+  // Bullet's contactPairTest takes non-const objects; it only reads them.
+  physics.world().contactPairTest(const_cast<btCollisionObject*>(&first.collisionObject()),
+                                  const_cast<btCollisionObject*>(&second.collisionObject()), result);
+  ASSERT_GT(result.count, 0);
+  EXPECT_NEAR(result.distance, -overlap, kSurfaceTolerance);
 }
 
 TEST_F(RopeCollisionObject, BulletConvexSweepTestHitsTheRope) {

@@ -331,8 +331,9 @@ TEST(KinematicRope, BulletPairsTheRopeButMakesNoContactAndItsQueriesSeeTheCapsul
   EXPECT_EQ(w.dispatcher.getNumManifolds(), 0);
   EXPECT_FALSE(rope.lastStep().contacts.empty());
   EXPECT_GT(box->getLinearVelocity().y(), 0.0);  // pushed up, out of the rope
-  // Bullet's own ray test reports the box and the rope's capsule surface (at the precision of its
-  // convex cast); ropeHit names the kinematic rope and s, and rayTestRopes has the exact hit.
+  // Bullet's own ray test reports the box and the rope's capsule surface (exactly: the capsule child
+  // answers Bullet's ray callback in closed form, collision_object/rope_shape.h); ropeHit names the
+  // kinematic rope and s, and rayTestRopes has the same hit.
   const btVector3 from(0, 1, btScalar(-0.5)), to(0, -1, btScalar(-0.5));
   btCollisionWorld::AllHitsRayResultCallback rays(from, to);
   w.world.rayTest(from, to, rays);
@@ -351,8 +352,8 @@ TEST(KinematicRope, BulletPairsTheRopeButMakesNoContactAndItsQueriesSeeTheCapsul
     const std::optional<RayHit> exact = rayTestRopes(ropes, from, to);
     ASSERT_TRUE(exact.has_value());
     EXPECT_EQ(exact->kinematicRope, &rope);
-    EXPECT_LT((rays.m_hitPointWorld[i] - exact->point).length(), 1e-3);
-    EXPECT_NEAR(hit->s, exact->s, 1e-3);
+    EXPECT_LT((rays.m_hitPointWorld[i] - exact->point).length(), 1e-9);
+    EXPECT_NEAR(hit->s, exact->s, 1e-9);
   }
   EXPECT_EQ(boxHits, 1);
   EXPECT_GE(ropeHits, 1);
@@ -404,7 +405,8 @@ TEST(KinematicRope, BulletPairsTheRopeButMakesNoContactAndItsQueriesSeeTheCapsul
   EXPECT_EQ(KinematicRope::ropeOf(*sweep.m_hitCollisionObject), &rope);
   // The ball first touches the rope when its centre is radius + 2 cm from the axis.
   const double touch = (0.3 - (middle.radius + 0.02)) / 0.6;
-  EXPECT_NEAR(static_cast<double>(sweep.m_closestHitFraction), touch, 1e-3);
+  EXPECT_NEAR(static_cast<double>(sweep.m_closestHitFraction), touch, 1e-9);  // a sphere's cast is exact
+  EXPECT_NEAR(static_cast<double>(sweep.m_hitPointWorld.x() - axisPoint.x()), middle.radius, 1e-9);
 }
 
 // Bullet's queries filter the rope's object by its collisionGroup like any object's; adding and
@@ -703,10 +705,43 @@ TEST(KinematicRope, SweepThroughADynamicRopeCarriesItAlongWithoutPassingThrough)
   ropes.removeRope(cable);
 }
 
+// In a Bullet world without a RopeWorld, Bullet's contactTest meets the rope's capsules as their
+// 16-sided triangle meshes (collision_object/rope_shape.h): the contact is found, no deeper than the
+// true overlap and shallower by at most the facets' depth, r (1 - cos(pi / 16)).
+TEST(KinematicRope, BulletContactTestWithoutARopeWorldMeetsTheCapsuleMesh) {
+  World w;
+  KinematicRope rope(straightRope());
+  rope.addToWorld(w.world);
+  const Capsule middle = rope.capsule(rope.capsuleCount() / 2);
+  const btVector3 axisPoint = (middle.a + middle.b) * btScalar(0.5);
+  btSphereShape ball(btScalar(0.02));
+  btCollisionObject probe;
+  probe.setCollisionShape(&ball);
+  probe.getWorldTransform().setIdentity();
+  const double overlap = 0.005;
+  probe.getWorldTransform().setOrigin(axisPoint + btVector3(btScalar(middle.radius + 0.02 - overlap), 0, 0));
+  struct Deepest : btCollisionWorld::ContactResultCallback {
+    btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper*, int, int,
+                             const btCollisionObjectWrapper*, int, int) override {
+      ++found;
+      deepest = std::min(deepest, static_cast<double>(point.getDistance()));
+      return 0;
+    }
+    int found = 0;
+    double deepest = 0.0;
+  } contacts;
+  w.world.contactTest(&probe, contacts);
+  ASSERT_GE(contacts.found, 1);
+  const double facetDepth = static_cast<double>(middle.radius) * (1.0 - std::cos(3.14159265358979323846 / 16));
+  RecordProperty("deepest_mm", std::to_string(contacts.deepest * 1e3));
+  EXPECT_GE(contacts.deepest, -overlap - 1e-9);
+  EXPECT_LE(contacts.deepest, -overlap + facetDepth + 1e-9);
+  rope.removeFromWorld();
+}
+
 TEST(KinematicRope, QueriesHitItsCapsuleSurfaceExactly) {
-  // rope::bullet::rayTestRopes and rayTest hit the capsule in closed form (Bullet's own rayTest hits
-  // it at its convex cast's precision: BulletPairsTheRope... above), and contactTest finds a body
-  // touching it.
+  // rope::bullet::rayTestRopes and rayTest hit the capsule in closed form (so does Bullet's own
+  // rayTest: BulletPairsTheRope... above), and contactTest finds a body touching it.
   World w;
   RopeWorld ropes(w.world);
   KinematicRope rope(straightRope());  // along -z from the origin, radius 1 cm

@@ -193,8 +193,10 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
 
     const double sA = parameterAt(proxyA, closest.s);
     const double sB = parameterAt(proxyB, closest.t);
-    const double arcSA = restArcAt(rodA, arcA, sA);
-    const double arcSB = restArcAt(rodB, restArc_[static_cast<size_t>(pair.ropeB)], sB);
+    // A capsule lies inside one knot span, where the rest arclength is linear in s (restArcAt), and s
+    // is linear along the capsule: interpolate between its ends' arclengths (no span search).
+    const double arcSA = endsA[0].arc + std::clamp(static_cast<double>(closest.s), 0.0, 1.0) * (endsA[1].arc - endsA[0].arc);
+    const double arcSB = endsB[0].arc + std::clamp(static_cast<double>(closest.t), 0.0, 1.0) * (endsB[1].arc - endsB[0].arc);
     if (self && std::abs(arcSA - arcSB) < exclusion) continue;
     if (cut != nullptr && std::abs(arcSA - cutArcA) + std::abs(arcSB - cutArcB) < exclusion) continue;
 

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <random>
 
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+
 #include "bullet_bridge/narrowphase/segment_triangle_distance.h"
 #include "narrowphase_test_support.h"
 
@@ -238,6 +240,44 @@ TEST(SegmentConvexDistance, SegmentCoreMatchesClosedFormOnRandomSegments) {
       ASSERT_NEAR(r.distance, reference, 1e-12) << "trial " << trial;
     }
   }
+}
+
+}  // namespace
+}  // namespace rope::bullet
+
+namespace rope::bullet {
+namespace {
+
+// The box's closed form against GJK on the same box as a hull of its eight corners (the general path):
+// the same status, distance and closest points, on random segments (some degenerate: points).
+TEST(SegmentConvexDistance, BoxClosedFormMatchesGjkOnTheSameBoxAsAHull) {
+  const btVector3 half(0.7, 0.3, 0.5);
+  const ConvexCore boxCore = box(half);
+  btConvexHullShape corners;
+  for (int i = 0; i < 8; ++i)
+    corners.addPoint(btVector3(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(), i & 4 ? half.z() : -half.z()));
+  corners.setMargin(0);
+  ConvexCore hullCore;
+  ASSERT_TRUE(makeConvexCore(corners, hullCore));
+  ASSERT_EQ(hullCore.kind, ConvexCore::Kind::Hull);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-2, 2);
+  int separated = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const btVector3 p(u(rng), u(rng), u(rng));
+    const btVector3 q = trial % 4 == 0 ? p : btVector3(u(rng), u(rng), u(rng));
+    const auto closed = segmentConvexDistance(p, q, boxCore, kBig);
+    const auto gjk = segmentConvexDistance(p, q, hullCore, kBig);
+    ASSERT_EQ(closed.status, gjk.status) << "trial " << trial;
+    if (closed.status != Status::Separated) continue;
+    ++separated;
+    ASSERT_NEAR(closed.distance, gjk.distance, 1e-12) << "trial " << trial;
+    ASSERT_TRUE(vectorNear(closed.pointOnCore, gjk.pointOnCore, 1e-9)) << "trial " << trial;
+    ASSERT_NEAR((closed.pointOnSegment - closed.pointOnCore).length(), closed.distance, 1e-12);
+  }
+  EXPECT_GT(separated, 1000);
+  // The cutoff: a distance beyond it is reported as such.
+  EXPECT_EQ(segmentConvexDistance(btVector3(3, 0, 0), btVector3(3, 1, 0), boxCore, 1.0).status, Status::BeyondCutoff);
 }
 
 }  // namespace

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Exact distance between a segment and a convex core (convex_support.h) by GJK on their Minkowski
-// difference, with our own simplex solver (libccd 2.x has no distance query). For polytope cores
-// (point, segment, box, hull) GJK terminates on the exact closest features; for cylinder and cone
-// cores it converges to a relative accuracy of 1e-12 in the distance.
+// Exact distance between a segment and a convex core (convex_support.h): a box in closed form (the
+// commonest body), every other core by GJK on their Minkowski difference, with our own simplex
+// solver (libccd 2.x has no distance query). For polytope cores (point, segment, hull) GJK terminates
+// on the exact closest features; for cylinder and cone cores it converges to a relative accuracy of
+// 1e-12 in the distance.
 
 #include <LinearMath/btVector3.h>
 

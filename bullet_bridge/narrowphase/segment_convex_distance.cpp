@@ -97,6 +97,27 @@ bool solveTetrahedron(Simplex& s, btScalar scale) {
   return true;
 }
 
+// The point of the box (half extents h about the origin) nearest to x.
+btVector3 clampToBox(const btVector3& x, const btVector3& half) {
+  return btVector3(std::min(half.x(), std::max(-half.x(), x.x())), std::min(half.y(), std::max(-half.y(), x.y())),
+                   std::min(half.z(), std::max(-half.z(), x.z())));
+}
+
+// Sets the status of a query whose least squared distance is distance2 (and its distance unless it
+// touches): false if nothing more is to be set (touching, or beyond the cutoff).
+bool classify(btScalar distance2, btScalar contactTolerance2, btScalar cutoff, SegmentConvexDistance& result) {
+  if (distance2 <= contactTolerance2) {
+    result.status = SegmentConvexDistance::Status::Intersecting;
+    return false;
+  }
+  result.distance = std::sqrt(distance2);
+  if (result.distance > cutoff) {
+    result.status = SegmentConvexDistance::Status::BeyondCutoff;
+    return false;
+  }
+  return true;
+}
+
 // A box (half extents h about the origin) in closed form, the commonest body (floors, tables, bars):
 // GJK there cost a quarter of a resting rope's step. The squared distance of p + t (q - p) from the
 // box is sum_k max(0, |x_k(t)| - h_k)^2, convex and piecewise quadratic in t between the (at most six)
@@ -135,29 +156,17 @@ SegmentConvexDistance segmentBoxDistance(const btVector3& p, const btVector3& q,
     }
     const btScalar t = A > btScalar(0) ? std::min(b, std::max(a, -B / A)) : a;
     const btVector3 x = p + d * t;
-    const btVector3 clamped(std::min(half.x(), std::max(-half.x(), x.x())), std::min(half.y(), std::max(-half.y(), x.y())),
-                            std::min(half.z(), std::max(-half.z(), x.z())));
-    const btScalar distance2 = (x - clamped).length2();
+    const btScalar distance2 = (x - clampToBox(x, half)).length2();
     if (distance2 < best2) {
       best2 = distance2;
       bestT = t;
     }
   }
   SegmentConvexDistance result;
-  if (best2 <= contactTolerance2) {
-    result.status = SegmentConvexDistance::Status::Intersecting;
-    return result;
-  }
-  result.distance = std::sqrt(best2);
-  if (result.distance > cutoff) {
-    result.status = SegmentConvexDistance::Status::BeyondCutoff;
-    return result;
-  }
+  if (!classify(best2, contactTolerance2, cutoff, result)) return result;
   result.t = bestT;
   result.pointOnSegment = p + d * bestT;
-  const btVector3& x = result.pointOnSegment;
-  result.pointOnCore = btVector3(std::min(half.x(), std::max(-half.x(), x.x())), std::min(half.y(), std::max(-half.y(), x.y())),
-                                 std::min(half.z(), std::max(-half.z(), x.z())));
+  result.pointOnCore = clampToBox(result.pointOnSegment, half);
   return result;
 }
 
@@ -232,15 +241,7 @@ SegmentConvexDistance segmentConvexDistance(const btVector3& p, const btVector3&
     vv = nextVV;
   }
 
-  if (vv <= contactTolerance2) {
-    result.status = SegmentConvexDistance::Status::Intersecting;
-    return result;
-  }
-  result.distance = std::sqrt(vv);
-  if (result.distance > cutoff) {
-    result.status = SegmentConvexDistance::Status::BeyondCutoff;
-    return result;
-  }
+  if (!classify(vv, contactTolerance2, cutoff, result)) return result;
   btVector3 onCore(0, 0, 0);
   btScalar t = 0;
   for (int i = 0; i < simplex.size; ++i) {

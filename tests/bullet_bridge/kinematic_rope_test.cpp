@@ -3,7 +3,6 @@
 // capsules follow the adaptive spline in the broadphase, dynamic bodies in the sweep are pushed out
 // one-way (the rope moves exactly as without them), static bodies are passed through, bad input is
 // rejected without changing anything, twin runs are bitwise identical.
-#include "bullet_bridge/collision_object/rope_shape.h"
 #include "bullet_bridge/kinematic_rope.h"
 
 #include <gtest/gtest.h>
@@ -17,8 +16,10 @@
 #include <memory>
 #include <vector>
 
+#include "bullet_bridge/collision_object/rope_shape.h"
 #include "bullet_bridge/find_contacts.h"
 #include "bullet_bridge/rope_queries.h"
+#include "bullet_query_test_support.h"
 #include "bullet_bridge/rope_world.h"
 #include "demos/scenes/bullet_world.h"
 #include "rope/common/error.h"
@@ -364,9 +365,7 @@ TEST(KinematicRope, BulletPairsTheRopeButMakesNoContactAndItsQueriesSeeTheCapsul
   const btVector3 axisPoint = (middle.a + middle.b) * btScalar(0.5);
   btSphereShape ball(btScalar(0.02));
   btCollisionObject probe;
-  probe.setCollisionShape(&ball);
-  probe.getWorldTransform().setIdentity();
-  probe.getWorldTransform().setOrigin(axisPoint + btVector3(btScalar(0.025), 0, 0));  // 5 mm into the rope
+  test::placeProbe(probe, ball, axisPoint + btVector3(btScalar(0.025), 0, 0));  // 5 mm into the rope
   struct Contacts : btCollisionWorld::ContactResultCallback {
     const KinematicRope* rope = nullptr;
     int found = 0;
@@ -716,26 +715,15 @@ TEST(KinematicRope, BulletContactTestWithoutARopeWorldMeetsTheCapsuleMesh) {
   const btVector3 axisPoint = (middle.a + middle.b) * btScalar(0.5);
   btSphereShape ball(btScalar(0.02));
   btCollisionObject probe;
-  probe.setCollisionShape(&ball);
-  probe.getWorldTransform().setIdentity();
   const double overlap = 0.005;
-  probe.getWorldTransform().setOrigin(axisPoint + btVector3(btScalar(middle.radius + 0.02 - overlap), 0, 0));
-  struct Deepest : btCollisionWorld::ContactResultCallback {
-    btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper*, int, int,
-                             const btCollisionObjectWrapper*, int, int) override {
-      ++found;
-      deepest = std::min(deepest, static_cast<double>(point.getDistance()));
-      return 0;
-    }
-    int found = 0;
-    double deepest = 0.0;
-  } contacts;
+  test::placeProbe(probe, ball, axisPoint + btVector3(btScalar(middle.radius + 0.02 - overlap), 0, 0));
+  test::DeepestContact contacts;
   w.world.contactTest(&probe, contacts);
-  ASSERT_GE(contacts.found, 1);
+  ASSERT_GE(contacts.count, 1);
   const double facetDepth = static_cast<double>(middle.radius) * (1.0 - std::cos(3.14159265358979323846 / 16));
-  RecordProperty("deepest_mm", std::to_string(contacts.deepest * 1e3));
-  EXPECT_GE(contacts.deepest, -overlap - 1e-9);
-  EXPECT_LE(contacts.deepest, -overlap + facetDepth + 1e-9);
+  RecordProperty("deepest_mm", std::to_string(contacts.distance * 1e3));
+  EXPECT_GE(contacts.distance, -overlap - 1e-9);
+  EXPECT_LE(contacts.distance, -overlap + facetDepth + 1e-9);
   rope.removeFromWorld();
 }
 

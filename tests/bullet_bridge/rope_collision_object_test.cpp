@@ -19,6 +19,7 @@
 
 #include "bullet_bridge/detail/bullet_math.h"
 #include "bullet_bridge/rope_queries.h"
+#include "bullet_query_test_support.h"
 #include "bullet_bridge/rope_world.h"
 #include "demos/scenes/drape_scene.h"
 #include "demos/scenes/physics_world.h"
@@ -152,16 +153,7 @@ TEST(RopeCollisionObjectWorld, BulletContactPairTestBetweenTwoRopes) {
                                      Vec3(0.5, 1 + 2 * radius - overlap, 0.5)));
   physics.ropes().addRope(first);
   physics.ropes().addRope(second);
-  struct Deepest : btCollisionWorld::ContactResultCallback {
-    btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper*, int, int,
-                             const btCollisionObjectWrapper*, int, int) override {
-      ++count;
-      distance = std::min(distance, static_cast<double>(point.getDistance()));
-      return 0;
-    }
-    int count = 0;
-    double distance = std::numeric_limits<double>::infinity();
-  } result;
+  test::DeepestContact result;
   // Bullet's contactPairTest takes non-const objects; it only reads them.
   physics.world().contactPairTest(const_cast<btCollisionObject*>(&first.collisionObject()),
                                   const_cast<btCollisionObject*>(&second.collisionObject()), result);

@@ -2,12 +2,12 @@
 #include "bullet_bridge/collision_object/rope_shape.h"
 
 #include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
-#include <LinearMath/btAabbUtil2.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btContinuousConvexCollision.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
 #include <BulletCollision/NarrowPhaseCollision/btRaycastCallback.h>
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
+#include <LinearMath/btAabbUtil2.h>
 
 #include <cmath>
 

@@ -481,9 +481,10 @@ void BodyContacts::limitShapeChangeWhereFrictionHolds(Rod& rod, double s, const 
   // removalErrorBound (0.1 mm) that is as much as the normal force f_n = k * depth of a rope held
   // round a drum (87 um deep where it carries 10 N round 5.5 cm, 4 um where it carries 0.48 N), so
   // removals along the wrap kicked the rope loose: wrapped 2 pi at mu = 0.5 it slipped from 0.7 of
-  // the capstan limit (measured, no damping; its contacts dropped from 186 to 1-4 within 0.1 s). Where friction holds a load, a removal may
-  // change f_n by at most kRemovalForceShare of it (docs/method.md §10). Resting samples are left free,
-  // so that a rope that has just touched a floor (f_n ~ 0) still sheds the knots its first touch made.
+  // the capstan limit (measured, no damping; its contacts dropped from 186 to 1-4 within 0.1 s).
+  // Where friction holds a load, a removal may change f_n by at most kRemovalForceShare of it
+  // (docs/method.md §10). Resting samples are left free, so that a rope that has just touched a floor
+  // (f_n ~ 0) still sheds the knots its first touch made.
   const double normalForce = force.dot(sample.normal);
   if (!(normalForce > 0.0 && sample.law.stiffness > 0.0)) return;
   if (tangential(force, sample.normal).norm() < kHeldFrictionShare * sample.law.friction * normalForce) return;

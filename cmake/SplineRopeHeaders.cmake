@@ -43,6 +43,7 @@ set(SPLINEROPE_ROPE_SUPPORT_HEADERS
   rope/tractrix/length_correction.h  # TractrixRope holds its correction workspace
 )
 set(SPLINEROPE_ROPE_INTERNAL_HEADERS
+  rope/common/fixed_vector.h
   rope/common/prefetch.h
   rope/spline/gauss_legendre.h
   rope/spline/point_validation.h

@@ -53,7 +53,7 @@ LocalRemoval localRemoval(const KnotRemoval& plan, const PointList& values) {
   again.span = shifted.span;
   again.degree = plan.degree;
   again.alpha = plan.alpha;
-  PointList restored = result.after;
+  LocalRemoval::Window restored = result.after;
   again.apply(restored);
   double error = 0.0;
   result.change.resize(restored.size());

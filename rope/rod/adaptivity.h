@@ -20,6 +20,7 @@
 
 #include <vector>
 
+#include "rope/common/fixed_vector.h"
 #include "rope/common/types.h"
 #include "rope/rod/rod_integrals.h"
 #include "rope/spline/knot_removal.h"
@@ -41,11 +42,13 @@ void curvatureInsertionSpans(const KnotVector& knots, const std::vector<double>&
 // knot inserted again: max distance = the removal's error for this per-control-point field (by the
 // convex hull property a bound on the field's change along the curve). Cost O(d).
 struct LocalRemoval {
+  // The window: control points span - d - 2 .. span + 3 (at most d + 6), held in place.
+  using Window = FixedVector<Vec3, kMaxDegree + 6>;
   int offset = 0;          // global index of after[0]
-  PointList after;         // removed values at global indices offset .. offset + after.size() - 1
+  Window after;            // removed values at global indices offset .. offset + after.size() - 1
   // (removed values with the knot inserted again) - values, at global indices offset ..
   // offset + change.size() - 1 of the array before removal; zero everywhere else.
-  PointList change;
+  Window change;
   double error = 0.0;      // max |change|
 };
 LocalRemoval localRemoval(const KnotRemoval& plan, const PointList& values);

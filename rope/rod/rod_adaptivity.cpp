@@ -43,7 +43,7 @@ RemovalSide checkSide(const KnotRemoval& plan, const PointList& rest, const Poin
   // Look ahead: the polygon after removal must not qualify for insertion at once.
   side.points = localRemoval(plan, points);
   for (int i = 1; i + 1 < static_cast<int>(side.points.after.size()); ++i) {
-    if (!(bendMeasure(side.points.after, i) <= limits.insertThreshold)) return side;
+    if (!(bendMeasure(side.points.after.data(), side.points.after.size(), i) <= limits.insertThreshold)) return side;
   }
   // The velocity field follows the same removal sweep and is just as inexact; where it moves by more
   // than the bound (an impact, a whip), the coarser spline cannot carry the motion and the rope's

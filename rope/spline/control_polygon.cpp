@@ -13,24 +13,33 @@
 namespace rope {
 namespace {
 
-// Sides a = q_i - q_{i-1} and b = q_{i+1} - q_i, validated.
-void sides(const PointList& points, int i, Vec3& a, Vec3& b) {
-  const int n = static_cast<int>(points.size());
+// Sides a = q_i - q_{i-1} and b = q_{i+1} - q_i of the polygon points[0 .. count-1], validated.
+void sides(const Vec3* points, std::size_t count, int i, Vec3& a, Vec3& b) {
+  const int n = static_cast<int>(count);
   if (i < 1 || i > n - 2) {
     throw InvalidArgument("i", std::to_string(i),
                           "must be an interior vertex in 1..points.size()-2 = " + std::to_string(n - 2));
   }
-  requireFinitePoints("points", points, static_cast<size_t>(i - 1), static_cast<size_t>(i + 1));
-  a = points[static_cast<size_t>(i)] - points[static_cast<size_t>(i - 1)];
-  b = points[static_cast<size_t>(i + 1)] - points[static_cast<size_t>(i)];
+  for (int j = i - 1; j <= i + 1; ++j) {
+    const Vec3& p = points[j];
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) {
+      throw InvalidArgument("points[" + std::to_string(j) + "]", formatPoint(p), "coordinates must be finite");
+    }
+  }
+  a = points[i] - points[i - 1];
+  b = points[i + 1] - points[i];
 }
+
+void sides(const PointList& points, int i, Vec3& a, Vec3& b) { sides(points.data(), points.size(), i, a, b); }
 
 }  // namespace
 
-double bendMeasure(const PointList& points, int i) {
+double bendMeasure(const PointList& points, int i) { return bendMeasure(points.data(), points.size(), i); }
+
+double bendMeasure(const Vec3* points, std::size_t count, int i) {
   Vec3 a;
   Vec3 b;
-  sides(points, i, a, b);
+  sides(points, count, i, a, b);
   const double lengths = a.norm() * b.norm();
   if (!(lengths > 0.0)) return 0.0;  // a zero-length side has no direction to bend
   // [A] eq. 13 with the corrected sign (docs/method.md eq. 27); the clamp absorbs rounding of |cos| past 1.

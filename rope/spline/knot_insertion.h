@@ -27,9 +27,11 @@ struct KnotInsertion {
   int lastChanged() const { return span; }
 
   // Applies the map to per-control-point values (positions, velocities, rest positions, ...):
-  // values grows by one. T needs T*double and T+T (double, Vec3, Eigen vectors).
-  template <class T>
-  void apply(std::vector<T>& values) const {
+  // values grows by one. Values: a std::vector (or any container with its value_type, operator[],
+  // begin() and insert()) of a T with T*double and T+T (double, Vec3, Eigen vectors).
+  template <class Values>
+  void apply(Values& values) const {
+    using T = typename Values::value_type;
     const int first = firstChanged();
     // Duplicate q_k: the copy at k+1 is q'_{k+1} = q_k, everything after it shifts by one.
     const T duplicate = values[static_cast<size_t>(span)];

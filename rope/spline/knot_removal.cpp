@@ -6,6 +6,7 @@
 #include <string>
 
 #include "rope/common/error.h"
+#include "rope/common/fixed_vector.h"
 #include "rope/spline/arc_length.h"
 #include "rope/spline/bspline_basis.h"
 #include "rope/spline/gauss_legendre.h"
@@ -15,10 +16,13 @@
 namespace rope {
 namespace {
 
+// The few control points a plan works on (d + 2: the window q_{k-d} .. q_{k+1}), in place.
+using Window = FixedVector<Vec3, kMaxDegree + 2>;
+
 // |L_new - L_old| over [a, b] where the new curve on the same knots has control points
 // points + delta on indices lo .. lo + delta.size() - 1 (the candidate with the knot re-inserted).
 // Both integrands use the same nodes, so spans where delta's functions vanish cancel exactly.
-double lengthChange(const KnotVector& knots, const PointList& points, int lo, const PointList& delta,
+double lengthChange(const KnotVector& knots, const PointList& points, int lo, const Window& delta,
                     double a, double b) {
   const ArcLengthOptions options;
   const GaussRule rule = gaussLegendre(options.gaussPoints);
@@ -107,7 +111,8 @@ KnotRemoval planRemoval(const KnotVector& knots, const PointList& points, double
   // Every point the sweeps and the length integrals read must be finite (the traps catch NaN).
   requireFinitePoints("points", points, static_cast<std::size_t>(std::max(0, lo - d)),
                      static_cast<std::size_t>(std::min(n - 1, k + d + 1)));
-  const PointList window(points.begin() + lo, points.begin() + k + 2);
+  Window window;
+  window.assign(points.begin() + lo, points.begin() + k + 2);
   KnotRemoval local = removal;
   local.span = d;
   KnotInsertion reinsertion;
@@ -120,10 +125,11 @@ KnotRemoval planRemoval(const KnotVector& knots, const PointList& points, double
   const double a = std::max(knots.validBegin(), t[static_cast<size_t>(lo)]);
   const double b = std::min(knots.validEnd(), t[static_cast<size_t>(k + d + 2)]);
   for (int side = 0; side < 2; ++side) {
-    PointList candidate = window;
+    Window candidate = window;
     local.apply(candidate, static_cast<KnotRemoval::Side>(side));
     reinsertion.apply(candidate);
-    PointList delta(window.size());
+    Window delta;
+    delta.resize(window.size());
     double shape = 0.0;
     for (size_t i = 0; i < window.size(); ++i) {
       delta[i] = candidate[i] - window[i];

@@ -50,11 +50,12 @@ struct KnotRemoval {
 
   // Applies the sweep of one side (default: the chosen one) to per-control-point values
   // (positions, velocities, ...): values shrinks by one. The sweep is linear in the values, so
-  // velocities follow the same map as positions.
-  template <class T>
-  void apply(std::vector<T>& values) const { apply(values, chosen); }
-  template <class T>
-  void apply(std::vector<T>& values, Side side) const;
+  // velocities follow the same map as positions. Values: a std::vector (or any container with its
+  // value_type, operator[], begin() and erase()).
+  template <class Values>
+  void apply(Values& values) const { apply(values, chosen); }
+  template <class Values>
+  void apply(Values& values, Side side) const;
 };
 
 // Plans the removal of one occurrence of the knot s (the last one) without changing anything.
@@ -72,8 +73,9 @@ KnotRemoval planKnotRemovalShape(const KnotVector& knots, const PointList& point
 KnotRemoval removeKnot(KnotVector& knots, PointList& points, double s);
 
 // ---- implementation of the template ----
-template <class T>
-void KnotRemoval::apply(std::vector<T>& values, Side side) const {
+template <class Values>
+void KnotRemoval::apply(Values& values, Side side) const {
+  using T = typename Values::value_type;
   // Unknowns p_i for i in [first, last]; p_{first-1} = q_{first-1} and p_{last+1} = q_{last+2} are
   // kept. Equations i = first .. last+1 use alpha[i - first].
   const int d = degree;

@@ -67,6 +67,24 @@ TEST(ControlPolygon, ZeroLengthSideDoesNotBend) {
   EXPECT_EQ(includedAngle(points, 2), kPi);
 }
 
+// The window overload (a polygon held anywhere, here inside a larger one) is the same function.
+TEST(ControlPolygon, BendMeasureOfAWindowEqualsTheWholePolygons) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  PointList points;
+  for (int i = 0; i < 12; ++i) points.emplace_back(unit(rng), unit(rng), unit(rng));
+  for (int first = 0; first + 3 <= 12; ++first) {
+    for (int i = 1; i + 1 < 12 - first; ++i) {
+      EXPECT_EQ(bendMeasure(points.data() + first, points.size() - static_cast<size_t>(first), i),
+                bendMeasure(points, first + i));
+    }
+  }
+  PointList bad = points;
+  bad[4] = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  expectInvalid([&] { bendMeasure(bad.data(), bad.size(), 3); }, "points[4]", "nan");
+  expectInvalid([&] { bendMeasure(bad.data(), 3, 2); }, "i", "2");
+}
+
 TEST(ControlPolygon, PolygonLengthSumsSides) {
   EXPECT_EQ(polygonLength(PointList{Vec3(0, 0, 0), Vec3(3, 4, 0), Vec3(3, 4, 2)}), 7.0);
   EXPECT_EQ(polygonLength(PointList{Vec3(1, 1, 1)}), 0.0);

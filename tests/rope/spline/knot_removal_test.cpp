@@ -8,10 +8,13 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
+#include "rope/common/fixed_vector.h"
 #include "rope/spline/arc_length.h"
 #include "rope/spline/bspline_curve.h"
+#include "rope/spline/knot_insertion.h"
 #include "tests/rope/spline/spline_test_support.h"
 
 namespace rope {
@@ -195,6 +198,46 @@ TEST(KnotRemoval, VelocitiesFollowTheSameLinearMap) {
   removal.apply(y);
   removal.apply(combined);
   for (size_t i = 0; i < x.size(); ++i) EXPECT_LE((combined[i] - (2.5 * x[i] + y[i])).norm(), 1e-12 * (1 + combined[i].norm()));
+}
+
+// apply() on a container held in place (rope/common/fixed_vector.h, what the removal checks use to
+// allocate nothing) gives bitwise what it gives on a std::vector, for both sides; so does
+// KnotInsertion::apply, and a FixedVector refuses to grow past its capacity.
+TEST(KnotRemoval, ApplyOnAnInPlaceWindowEqualsApplyOnAVector) {
+  std::mt19937 rng(23);
+  for (int trial = 0; trial < 50; ++trial) {
+    const BSplineCurve curve = test::randomCurve(rng, 3, true, 1);
+    const std::vector<double> interior = interiorKnots(curve.knots());
+    if (interior.empty()) continue;
+    const KnotRemoval removal = planKnotRemoval(curve.knots(), curve.controlPoints(), interior.front());
+    for (const KnotRemoval::Side side : {KnotRemoval::kFromLeft, KnotRemoval::kFromRight}) {
+      PointList vector = curve.controlPoints();
+      FixedVector<Vec3, 32> window;
+      window.assign(vector.begin(), vector.end());
+      removal.apply(vector, side);
+      removal.apply(window, side);
+      ASSERT_EQ(window.size(), vector.size());
+      for (size_t i = 0; i < vector.size(); ++i) EXPECT_EQ(window[i], vector[i]);
+    }
+    const KnotInsertion insertion = planKnotInsertion(curve.knots(), interior.front());
+    PointList vector = curve.controlPoints();
+    FixedVector<Vec3, 32> window;
+    window.assign(vector.begin(), vector.end());
+    insertion.apply(vector);
+    insertion.apply(window);
+    ASSERT_EQ(window.size(), vector.size());
+    for (size_t i = 0; i < vector.size(); ++i) EXPECT_EQ(window[i], vector[i]);
+  }
+  FixedVector<double, 2> full;
+  full.push_back(1.0);
+  full.push_back(2.0);
+  EXPECT_THROW(full.push_back(3.0), std::length_error);
+  EXPECT_THROW(full.insert(full.begin(), 0.0), std::length_error);
+  EXPECT_EQ(full.size(), 2u);
+  EXPECT_EQ(full[0], 1.0);
+  full.erase(full.begin());
+  ASSERT_EQ(full.size(), 1u);
+  EXPECT_EQ(full[0], 2.0);
 }
 
 // ---- bad input ----

@@ -32,4 +32,16 @@ void requireNonNegative(const std::string& parameter, double value) {
   if (value < 0.0) throw InvalidArgument(parameter, formatValue(value), "must be >= 0");
 }
 
+void requireFinite(const char* parameter, double value) {
+  if (!std::isfinite(value)) requireFinite(std::string(parameter), value);
+}
+
+void requirePositive(const char* parameter, double value) {
+  if (!(std::isfinite(value) && value > 0.0)) requirePositive(std::string(parameter), value);
+}
+
+void requireNonNegative(const char* parameter, double value) {
+  if (!(std::isfinite(value) && value >= 0.0)) requireNonNegative(std::string(parameter), value);
+}
+
 }  // namespace rope

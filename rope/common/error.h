@@ -34,5 +34,10 @@ std::string formatValue(double value);
 void requireFinite(const std::string& parameter, double value);
 void requirePositive(const std::string& parameter, double value);     // finite and > 0
 void requireNonNegative(const std::string& parameter, double value);  // finite and >= 0
+// The same for a name given as a C string (a literal): the std::string is built only for the error,
+// so a check on a per-step path allocates nothing (names past the small-string buffer would).
+void requireFinite(const char* parameter, double value);
+void requirePositive(const char* parameter, double value);
+void requireNonNegative(const char* parameter, double value);
 
 }  // namespace rope

@@ -14,13 +14,16 @@ namespace rope {
 
 namespace {
 
-void requireParameterOn(const Rod& rod, const std::string& name, double s) {
+// Checks s of couplings[k].<member>; the name is built only for the error (prepare runs every
+// substep, and a name longer than the small-string buffer costs an allocation per coupling).
+void requireParameterOn(const Rod& rod, std::size_t k, const char* member, double s) {
+  // Finite first: an ordered comparison with NaN raises the trapped "invalid" exception.
+  if (std::isfinite(s) && s >= rod.beginParameter() && s <= rod.endParameter()) return;
+  const std::string name = "couplings[" + std::to_string(k) + "]." + member;
   requireFinite(name, s);
-  if (s < rod.beginParameter() || s > rod.endParameter()) {
-    throw InvalidArgument(name, formatValue(s), "must be within its rod's parameter range [" +
-                                                    formatValue(rod.beginParameter()) + ", " +
-                                                    formatValue(rod.endParameter()) + "]");
-  }
+  throw InvalidArgument(name, formatValue(s), "must be within its rod's parameter range [" +
+                                                  formatValue(rod.beginParameter()) + ", " +
+                                                  formatValue(rod.endParameter()) + "]");
 }
 
 }  // namespace
@@ -103,19 +106,19 @@ Eigen::Matrix3d CoupledSolve::crossResponse(int p, int q) const {
 
 void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<PointCoupling>& couplings) {
   for (size_t i = 0; i < rods.size(); ++i) {
-    const std::string name = "rods[" + std::to_string(i) + "]";
-    if (rods[i] == nullptr) throw InvalidArgument(name, "null", "must be a rod");
-    if (!rods[i]->hasTrial()) throw InvalidArgument(name, "no trial", "solveTrial() must have succeeded");
+    const auto name = [i] { return "rods[" + std::to_string(i) + "]"; };
+    if (rods[i] == nullptr) throw InvalidArgument(name(), "null", "must be a rod");
+    if (!rods[i]->hasTrial()) throw InvalidArgument(name(), "no trial", "solveTrial() must have succeeded");
   }
   const int rodCount = static_cast<int>(rods.size());
   for (size_t k = 0; k < couplings.size(); ++k) {
     const PointCoupling& c = couplings[k];
-    const std::string name = "couplings[" + std::to_string(k) + "]";
-    if (c.rodA < 0 || c.rodA >= rodCount) throw InvalidArgument(name + ".rodA", std::to_string(c.rodA), "no such rod");
-    if (c.rodB < 0 || c.rodB >= rodCount) throw InvalidArgument(name + ".rodB", std::to_string(c.rodB), "no such rod");
-    requireParameterOn(*rods[static_cast<size_t>(c.rodA)], name + ".sA", c.sA);
-    requireParameterOn(*rods[static_cast<size_t>(c.rodB)], name + ".sB", c.sB);
-    if (c.rodA == c.rodB && c.sA == c.sB) throw InvalidArgument(name + ".sB", formatValue(c.sB), "must differ from sA on the same rod");
+    const auto name = [k](const char* member) { return "couplings[" + std::to_string(k) + "]." + member; };
+    if (c.rodA < 0 || c.rodA >= rodCount) throw InvalidArgument(name("rodA"), std::to_string(c.rodA), "no such rod");
+    if (c.rodB < 0 || c.rodB >= rodCount) throw InvalidArgument(name("rodB"), std::to_string(c.rodB), "no such rod");
+    requireParameterOn(*rods[static_cast<size_t>(c.rodA)], k, "sA", c.sA);
+    requireParameterOn(*rods[static_cast<size_t>(c.rodB)], k, "sB", c.sB);
+    if (c.rodA == c.rodB && c.sA == c.sB) throw InvalidArgument(name("sB"), formatValue(c.sB), "must differ from sA on the same rod");
   }
 
   rods_ = rods;

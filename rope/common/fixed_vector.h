@@ -20,15 +20,12 @@ template <class T, int N>
 class FixedVector {
  public:
   using value_type = T;
-  using iterator = T*;
-  using const_iterator = const T*;
 
   // The whole storage starts at zero, so that copies (which copy all of it) read nothing
   // uninitialised: an Eigen vector's default constructor leaves its coefficients unset.
   FixedVector() { values_.fill(zero()); }
 
   std::size_t size() const { return size_; }
-  bool empty() const { return size_ == 0; }
   static constexpr std::size_t capacity() { return static_cast<std::size_t>(N); }
 
   T& operator[](std::size_t i) { return values_[i]; }

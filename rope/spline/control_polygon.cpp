@@ -20,12 +20,7 @@ void sides(const Vec3* points, std::size_t count, int i, Vec3& a, Vec3& b) {
     throw InvalidArgument("i", std::to_string(i),
                           "must be an interior vertex in 1..points.size()-2 = " + std::to_string(n - 2));
   }
-  for (int j = i - 1; j <= i + 1; ++j) {
-    const Vec3& p = points[j];
-    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) {
-      throw InvalidArgument("points[" + std::to_string(j) + "]", formatPoint(p), "coordinates must be finite");
-    }
-  }
+  requireFinitePoints("points", points, count, static_cast<std::size_t>(i - 1), static_cast<std::size_t>(i + 1));
   a = points[i] - points[i - 1];
   b = points[i + 1] - points[i];
 }

@@ -25,17 +25,24 @@ inline void requireFinitePoint(const std::string& name, const Vec3& point) {
   }
 }
 
-// Checks points[first..last] (inclusive), naming the offending one "name[i]".
-inline void requireFinitePoints(const std::string& name, const PointList& points, std::size_t first = 0,
+// Checks points[first..last] (inclusive) of an array of `count` points, naming the offending one
+// "name[i]".
+inline void requireFinitePoints(const char* name, const Vec3* points, std::size_t count, std::size_t first = 0,
                                 std::size_t last = static_cast<std::size_t>(-1)) {
-  if (points.empty()) return;
-  if (last >= points.size()) last = points.size() - 1;
+  if (count == 0) return;
+  if (last >= count) last = count - 1;
   for (std::size_t i = first; i <= last; ++i) {
     const Vec3& p = points[i];
     if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) {
-      throw InvalidArgument(name + "[" + std::to_string(i) + "]", formatPoint(p), "coordinates must be finite");
+      throw InvalidArgument(std::string(name) + "[" + std::to_string(i) + "]", formatPoint(p), "coordinates must be finite");
     }
   }
+}
+
+// The same for a PointList.
+inline void requireFinitePoints(const std::string& name, const PointList& points, std::size_t first = 0,
+                                std::size_t last = static_cast<std::size_t>(-1)) {
+  requireFinitePoints(name.c_str(), points.data(), points.size(), first, last);
 }
 
 }  // namespace rope

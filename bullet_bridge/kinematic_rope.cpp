@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "bullet_bridge/collision_object/capsule_dispatch.h"
 #include "bullet_bridge/detail/body_state.h"
 #include "bullet_bridge/find_contacts.h"
 #include "bullet_bridge/detail/guarded_call.h"
@@ -111,6 +112,7 @@ void KinematicRope::addToWorld(btDiscreteDynamicsWorld& world) {
   world_ = &world;
   time_ = 0.0;
   report_ = KinematicRopeStepReport{};
+  capsuleDispatch_ = CapsuleDispatch::acquire(world);
   proxies_.addToWorld(world, settings_.collisionGroup, settings_.collisionMask);
   world.addAction(action_.get());
 }
@@ -120,6 +122,8 @@ void KinematicRope::removeFromWorld() {
   // If the object lost its broadphase handle, the Bullet world was destroyed already and must not be
   // touched (CapsuleProxies::removeFromWorld leaves it alone then).
   if (!proxies_.orphaned()) world_->removeAction(action_.get());
+  if (proxies_.orphaned() && capsuleDispatch_) capsuleDispatch_->detach();
+  capsuleDispatch_.reset();
   proxies_.removeFromWorld();
   world_ = nullptr;
   report_.contacts.clear();  // their body pointers may outlive nothing else

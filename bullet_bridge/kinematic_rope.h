@@ -16,7 +16,8 @@
 // substep, padded), one broadphase box for the whole rope. Its userIndex2 is kKinematicRopeTag. It
 // carries CF_NO_CONTACT_RESPONSE and asks Bullet for no pair except with dynamic ropes, so Bullet's
 // solver and narrowphase never act on it; Bullet's own queries (rayTest, contactTest,
-// contactPairTest, convexSweepTest) see its capsules like any compound's, and ropeHit
+// contactPairTest, convexSweepTest) see its capsules like any compound's, as exact capsules whether
+// or not the world has a RopeWorld (collision_object/capsule_dispatch.h), and ropeHit
 // (rope_queries.h) maps such a hit to the rope and the curve parameter s. After moving, the rope
 // finds the dynamic bodies overlapping its capsules through the broadphase, measures contacts with
 // the bridge's narrowphase (find_contacts.h) and pushes each body by one-way contact impulses, all
@@ -64,6 +65,8 @@
 #include "rope/tractrix/tractrix_rope.h"
 
 namespace rope::bullet {
+
+class CapsuleDispatch;  // collision_object/capsule_dispatch.h (internal)
 
 // One push of the last substep.
 struct KinematicContactRecord {
@@ -195,6 +198,8 @@ class KinematicRope {
   std::vector<btVector3> axis_;           // capsule end points now
   std::vector<btVector3> previousAxis_;   // the same parameters on the previous curve
   std::vector<btScalar> bulge_;           // per capsule: the curve's distance from its chord midpoint
+  // Bullet's queries meet the capsules exactly, with or without a RopeWorld; held while in a world.
+  std::shared_ptr<CapsuleDispatch> capsuleDispatch_;
   CapsuleProxies proxies_;  // the collision object: leaves are the capsules' boxes over the last substep
   std::vector<Candidate> candidates_;
   std::vector<Contact> scratch_;

@@ -9,12 +9,10 @@
 // until Bullet drops the pair (and destroys the algorithm with it: boxes apart, an object removed,
 // the world destroyed). The RopeWorld's substep reads that list, re-checking each pair's overlap (the
 // pair cache drops pairs lazily). Every other pair, compounds of the user's included, goes to the
-// create function that was in the dispatcher before (restored when the RopeWorld goes). In both of
-// Bullet's tables the RopeWorld also takes the entries of a rope's capsule child
-// (FAST_CONCAVE_MESH_PROXYTYPE, rope_shape.h) against every type, which Bullet's compound algorithm
-// dispatches when a query (contactTest, contactPairTest) reaches the rope's capsules: for a pair with a
-// RopeCapsuleShape it runs the algorithm Bullet would run for a btCapsuleShape of the same size in its
-// place; every other pair goes to the previous entry. So those queries run Bullet's own algorithms over the rope's capsules as before.
+// create function that was in the dispatcher before (restored when the RopeWorld goes). Queries that
+// reach a rope's capsules (contactTest, contactPairTest) are the CapsuleDispatch's, which the
+// RopeDispatch holds (capsule_dispatch.h; kinematic ropes share it), so those run Bullet's own
+// algorithms over the rope's capsules.
 //
 // Why create functions and not a near callback: a btNearCallback is a plain function pointer with no
 // user data, so chaining the user's callback would need a global registry, and a dispatch table
@@ -40,6 +38,7 @@
 namespace rope::bullet {
 
 class RopePairAlgorithm;
+class CapsuleDispatch;  // capsule_dispatch.h (internal)
 
 // The rope pairs Bullet keeps (at least one of the two objects is a rope's), in no fixed order.
 class RopePairs {
@@ -93,12 +92,13 @@ class RopeDispatch {
   RopeDispatch(const RopeDispatch&) = delete;
   RopeDispatch& operator=(const RopeDispatch&) = delete;
   // The Bullet world (and perhaps its dispatcher) was destroyed: leave it alone from now on.
-  void detach() { dispatcher_ = nullptr; }
+  void detach();
 
  private:
   class CreateFunc;
   btCollisionDispatcher* dispatcher_;
   std::vector<std::unique_ptr<CreateFunc>> funcs_;
+  std::shared_ptr<CapsuleDispatch> capsules_;
 };
 
 template <class F>

@@ -18,11 +18,13 @@
 // normal and fraction, to rounding. Its type is FAST_CONCAVE_MESH_PROXYTYPE, a concave type no shape
 // of Bullet's uses (Bullet's extension type CUSTOM_CONCAVE_SHAPE_TYPE is also its
 // btSdfCollisionShape's, which its concave algorithm casts to and queries as a distance field). For
-// contactTest and contactPairTest a RopeWorld registers, on its dispatcher, an algorithm that hands
-// Bullet a btCapsuleShape of the same size in the child's place (rope_dispatch.h), so those run
-// Bullet's own capsule algorithms as before. Any other triangle callback (Bullet's concave algorithm
-// where no RopeWorld dispatches: a kinematic rope in a world without one) gets the capsule as a
-// closed triangle mesh, 16 sides round (its facets at most 2 % of the radius inside the surface).
+// contactTest and contactPairTest, whatever puts rope capsules into a world (a RopeWorld, a
+// KinematicRope) installs on its dispatcher an algorithm that hands Bullet a btCapsuleShape of the same
+// size in the child's place (capsule_dispatch.h), so those run Bullet's own capsule algorithms. Any
+// other triangle callback (Bullet's concave algorithm where that dispatch is not installed: a world
+// whose dispatcher is not a btCollisionDispatcher, or a user's table entry registered over ours) gets
+// the capsule as a closed triangle mesh, 16 sides round (its facets at most 2 % of the radius inside
+// the surface).
 // Not API: installed only because capsule_proxies.h holds it; may change in any release.
 
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>

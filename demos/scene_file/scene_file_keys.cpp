@@ -20,7 +20,7 @@ const std::vector<SceneFileKeyTable>& sceneFileKeyTables() {
       {"rope.settings",
        {// RodSettings (rope/rod/rod_settings.h)
         "restLength", "radius", "linearDensity", "materialDensity", "youngsModulus", "bendingStiffness",
-        "massDamping", "stiffnessDamping", "gravity", "timeIntegrator", "degree", "initialControlPoints", "stretchingQuadrature",
+        "massDamping", "stiffnessDamping", "materialDamping", "gravity", "timeIntegrator", "degree", "initialControlPoints", "stretchingQuadrature",
         "adaptive", "minControlPoints", "maxControlPoints", "insertAngle", "removeAngle", "removalErrorBound",
         "removalVelocityErrorBound", "removalCriterion", "removalRelativeError", "minKnotSpacing",
         // BulletRopeSettings (bullet_bridge/rope_settings.h)

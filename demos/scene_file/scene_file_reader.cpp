@@ -122,6 +122,7 @@ void readRopeSettings(const JsonFields& fields, RodSettings& rod, bullet::Bullet
   rod.bendingStiffness = numberOrDerived(fields, "bendingStiffness", rod.bendingStiffness, RodSettings::kDerived);
   rod.massDamping = fields.number("massDamping", rod.massDamping);
   rod.stiffnessDamping = fields.number("stiffnessDamping", rod.stiffnessDamping);
+  rod.materialDamping = fields.number("materialDamping", rod.materialDamping);
   rod.gravity = fields.vec3("gravity", rod.gravity);
   rod.timeIntegrator = fields.choice("timeIntegrator", {"bdf2", "backwardEuler"}, "bdf2") == "backwardEuler"
                            ? TimeIntegrator::kBackwardEuler

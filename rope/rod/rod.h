@@ -11,11 +11,12 @@
 // Units: metres, seconds, kilograms, newtons. The curve parameter s runs over
 // [beginParameter(), endParameter()]; for ropes created from a segment it is the rest arclength.
 //
-// Step (method §8, eqs. 22a–23): (M + h alpha M + c (h^2 + h beta) K) dv
-//     = h (f_ext + M g - alpha M v) + c h (F_int - (h + beta) K v) + H,   v += dv, q += h v,
-// with Rayleigh damping D = alpha M + beta K (massDamping, stiffnessDamping), F_int the stretching and
-// bending forces, K their stiffness (stretching with the Gauss–Newton clamp, plus the constant bending
-// stiffness), pins and clamps imposed on the end-of-step positions. Backward Euler: c = 1, H = 0. BDF2
+// Step (method §8, eqs. 22a–23): (M + h alpha M + c ((h^2 + h beta) K + h eta K_m)) dv
+//     = h (f_ext + M g - alpha M v) + c h (F_int - (h + beta) K v - eta K_m v) + H,   v += dv, q += h v,
+// with damping D = alpha M + beta K + eta K_m (massDamping, stiffnessDamping, materialDamping; eq. 20),
+// F_int the stretching and bending forces, K their stiffness (stretching with the Gauss–Newton clamp,
+// plus the constant bending stiffness), K_m its material part (K without the tension term, so zero on
+// rigid motion), pins and clamps imposed on the end-of-step positions. Backward Euler: c = 1, H = 0. BDF2
 // (the default): c = 4/9 and H = (6 g_n - g_{n-1}) / 9 from the internal impulses g of the last two
 // steps (eq. 22c); loads, springs, gravity and mass damping keep the full weight h in both, so the rod's
 // momentum changes by exactly the impulse its loads deliver.
@@ -414,12 +415,14 @@ class Rod {
   std::vector<ConstraintRows> rows_;
   std::vector<ConstraintRows> relaxationRows_;  // insertKnotUnchecked's scratch
   std::vector<double> rhs_;
-  PointList force_, stiffnessTimesV_, massTimesV_;
+  PointList force_, stiffnessTimesV_, materialTimesV_, massTimesV_;
   // The internal forces (stretching, bending; N per control point) at the start of the trial, their
-  // stiffness blocks (lower triangle per span) and the trial's history term (N s): what
-  // recordInternalImpulse() needs once the trial's end velocities are final.
+  // stiffness blocks (lower triangle per span), the tension scalar of each block (K - tension I is
+  // the material part K_m) and the trial's history term (N s): what recordInternalImpulse() needs
+  // once the trial's end velocities are final.
   PointList internalForce_, historyTerm_;
   std::vector<Eigen::Matrix3d> stiffnessBlocks_;
+  std::vector<Eigen::Matrix3d> materialBlocks_;
   double trialInternalWeight_ = 1.0;
   // BDF2's history (method eq. 22c): the internal impulses g (N s per control point) of the last two
   // steps, how many of them are valid (0 after a restart) and the h they were taken with (s).

@@ -69,6 +69,7 @@ void RodSettings::validate() const {
   if (bendingStiffness != kDerived) requireNonNegative("settings.bendingStiffness", bendingStiffness);
   requireNonNegative("settings.massDamping", massDamping);
   requireNonNegative("settings.stiffnessDamping", stiffnessDamping);
+  requireNonNegative("settings.materialDamping", materialDamping);
   if (timeIntegrator != TimeIntegrator::kBdf2 && timeIntegrator != TimeIntegrator::kBackwardEuler) {
     throw InvalidArgument("settings.timeIntegrator", std::to_string(static_cast<int>(timeIntegrator)),
                           "is not a TimeIntegrator");

@@ -8,13 +8,17 @@
 namespace rope {
 
 double stretchingSpan(const SpanView& span, const Vec3* q, double axialStiffness, StiffnessMode mode,
-                      Vec3* force, Eigen::Matrix3d* stiffness) {
+                      Vec3* force, Eigen::Matrix3d* stiffness, double* tension) {
   const int local = span.localCount;
   const double halfEA = 0.5 * axialStiffness;
   double energy = 0.0;
   if (stiffness != nullptr) {
     for (int a = 0; a < local; ++a)
       for (int b = 0; b <= a; ++b) stiffness[a * local + b].setZero();
+    if (tension != nullptr) {
+      for (int a = 0; a < local; ++a)
+        for (int b = 0; b <= a; ++b) tension[a * local + b] = 0.0;
+    }
   }
   for (int g = 0; g < span.gaussCount; ++g) {
     const double w1 = span.w1[g];
@@ -34,9 +38,28 @@ double stretchingSpan(const SpanView& span, const Vec3* q, double axialStiffness
       h.diagonal().array() += isotropic;
       for (int a = 0; a < local; ++a)
         for (int b = 0; b <= a; ++b) stiffness[a * local + b] += (db[a] * db[b]) * h;
+      if (tension != nullptr) {
+        for (int a = 0; a < local; ++a)
+          for (int b = 0; b <= a; ++b) tension[a * local + b] += (db[a] * db[b]) * isotropic;
+      }
     }
   }
   return energy;
+}
+
+void materialStiffnessSpan(const SpanView& span, const Vec3* q, double axialStiffness, Eigen::Matrix3d* stiffness) {
+  const int local = span.localCount;
+  for (int a = 0; a < local; ++a)
+    for (int b = 0; b <= a; ++b) stiffness[a * local + b].setZero();
+  for (int g = 0; g < span.gaussCount; ++g) {
+    if (span.w1[g] == 0.0) continue;  // empty span
+    const double* db = span.dBasis + g * local;
+    Vec3 tangent = Vec3::Zero();  // C'(s_g)
+    for (int a = 0; a < local; ++a) tangent += db[a] * q[a];
+    const Eigen::Matrix3d h = (axialStiffness * span.w3[g]) * (tangent * tangent.transpose());
+    for (int a = 0; a < local; ++a)
+      for (int b = 0; b <= a; ++b) stiffness[a * local + b] += (db[a] * db[b]) * h;
+  }
 }
 
 double stretchingEnergy(const RodIntegrals& integrals, const PointList& q, double axialStiffness) {

@@ -81,6 +81,7 @@ TEST(UserGuide, RodSettings) {
        field("linearDensity", &S::linearDensity, derived), field("materialDensity", &S::materialDensity),
        field("youngsModulus", &S::youngsModulus), field("bendingStiffness", &S::bendingStiffness, derived),
        field("massDamping", &S::massDamping), field("stiffnessDamping", &S::stiffnessDamping),
+       field("materialDamping", &S::materialDamping),
        field("gravity", &S::gravity),
        enumField("timeIntegrator", &S::timeIntegrator,
                  {{TimeIntegrator::kBdf2, "TimeIntegrator::kBdf2"},

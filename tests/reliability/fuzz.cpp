@@ -292,6 +292,7 @@ const std::vector<Mutation<RodSettings>>& rodMutations() {
       [](RodSettings& s, Random& r) { s.bendingStiffness = r.chance(0.3) ? RodSettings::kDerived : r.wild(); },
       [](RodSettings& s, Random& r) { s.massDamping = r.wild(); },
       [](RodSettings& s, Random& r) { s.stiffnessDamping = r.wild(); },
+      [](RodSettings& s, Random& r) { s.materialDamping = r.wild(); },
       [](RodSettings& s, Random& r) { s.gravity[r.below(3)] = r.wild(); },
       [](RodSettings& s, Random& r) { s.degree = r.wildInt(); },
       [](RodSettings& s, Random& r) { s.initialControlPoints = r.wildInt(); },

@@ -136,12 +136,12 @@ TEST(SceneFileDocs, EverySettingsFieldIsAKey) {
 bool sameSettings(const RopeDescription& a, const RopeDescription& b) {
   const RodSettings &r = a.rod, &s = b.rod;
   const bullet::BulletRopeSettings &p = a.bridge, &q = b.bridge;
-  static_assert(docs::fieldCount<RodSettings>() == 23 && docs::fieldCount<bullet::BulletRopeSettings>() == 24,
+  static_assert(docs::fieldCount<RodSettings>() == 24 && docs::fieldCount<bullet::BulletRopeSettings>() == 24,
                 "compare the new field here");
   return r.restLength == s.restLength && r.radius == s.radius && r.linearDensity == s.linearDensity &&
          r.materialDensity == s.materialDensity && r.youngsModulus == s.youngsModulus &&
          r.bendingStiffness == s.bendingStiffness && r.massDamping == s.massDamping &&
-         r.stiffnessDamping == s.stiffnessDamping && r.gravity == s.gravity && r.timeIntegrator == s.timeIntegrator && r.degree == s.degree &&
+         r.stiffnessDamping == s.stiffnessDamping && r.materialDamping == s.materialDamping && r.gravity == s.gravity && r.timeIntegrator == s.timeIntegrator && r.degree == s.degree &&
          r.initialControlPoints == s.initialControlPoints && r.stretchingQuadrature == s.stretchingQuadrature &&
          r.adaptive == s.adaptive && r.minControlPoints == s.minControlPoints && r.maxControlPoints == s.maxControlPoints &&
          r.insertAngle == s.insertAngle && r.removeAngle == s.removeAngle && r.removalErrorBound == s.removalErrorBound &&

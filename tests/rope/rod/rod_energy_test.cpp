@@ -11,6 +11,7 @@
 
 #include "rope/rod/rod.h"
 #include "rope/spline/gauss_legendre.h"
+#include "tests/rope/rod/rod_test_util.h"
 
 namespace rope {
 namespace {
@@ -96,23 +97,7 @@ TEST(RodEnergy, WithDampingEnergyDecaysToTheHangingMinimum) {
 
 // ---- with the default adaptivity ----
 
-// Angular momentum about the origin, integral of mu C(s) x V(s) l0'(s) ds, kg m^2/s: exact for a
-// straight rest curve (l0' = 1; the integrand is a polynomial of degree 2d per span, 5 Gauss points).
-Vec3 angularMomentum(const Rod& rod) {
-  const GaussRule rule = gaussLegendre(5);
-  const std::vector<double>& knots = rod.knots().values();
-  const double mu = rod.settings().effectiveLinearDensity();
-  Vec3 sum = Vec3::Zero();
-  for (std::size_t j = 0; j + 1 < knots.size(); ++j) {
-    const double a = std::max(knots[j], rod.beginParameter()), b = std::min(knots[j + 1], rod.endParameter());
-    if (b <= a) continue;
-    for (int q = 0; q < rule.count; ++q) {
-      const double s = 0.5 * (a + b) + 0.5 * (b - a) * rule.nodes[q];
-      sum += 0.5 * (b - a) * rule.weights[q] * mu * rod.restMetric(s) * rod.position(s).cross(rod.velocity(s));
-    }
-  }
-  return sum;
-}
+using rope::test::angularMomentum;
 
 // A free 1 m rope (no gravity, no damping) spinning at `spin` rad/s about z through its middle, with
 // a transverse wave of `wave` m/s on top and a drift of 0.1 m/s along x. Default adaptivity.

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -11,8 +13,28 @@
 
 #include "rope/common/error.h"
 #include "rope/rod/rod.h"
+#include "rope/spline/gauss_legendre.h"
 
 namespace rope::test {
+
+// Angular momentum about the origin, integral of mu C(s) x V(s) l0'(s) ds, kg m^2/s: exact for a
+// straight rest curve (l0' = 1; the integrand is a polynomial of degree 2d per span, 5 Gauss points).
+inline Vec3 angularMomentum(const Rod& rod) {
+  const GaussRule rule = gaussLegendre(5);
+  const std::vector<double>& knots = rod.knots().values();
+  const double mu = rod.settings().effectiveLinearDensity();
+  Vec3 sum = Vec3::Zero();
+  for (std::size_t j = 0; j + 1 < knots.size(); ++j) {
+    const double a = std::max(knots[j], rod.beginParameter()), b = std::min(knots[j + 1], rod.endParameter());
+    if (b <= a) continue;
+    for (int q = 0; q < rule.count; ++q) {
+      const double s = 0.5 * (a + b) + 0.5 * (b - a) * rule.nodes[q];
+      sum += 0.5 * (b - a) * rule.weights[q] * mu * rod.restMetric(s) * rod.position(s).cross(rod.velocity(s));
+    }
+  }
+  return sum;
+}
+
 
 // Everything a step or an edit may change, for "object unchanged" and bitwise twin checks.
 struct RodSnapshot {

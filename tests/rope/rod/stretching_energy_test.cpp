@@ -110,6 +110,57 @@ INSTANTIATE_TEST_SUITE_P(StretchedAndCompressed, StretchingFiniteDifferences,
                                            Case{3, 0.8, true, StretchingQuadrature::kLockingFree},
                                            Case{2, 0.9, false, StretchingQuadrature::kLockingFree}));
 
+// The Kelvin–Voigt damping's matrix (docs/method.md eq. 20): the exact stiffness without its tension
+// term, block for block, so that v^T K_m v = sum_g EA W3 (C'.v')^2 is the strain-rate energy, and zero
+// on a rigid rotation of a bent, stretched rope.
+TEST(Stretching, MaterialStiffnessIsTheStiffnessWithoutItsTensionTermAndIgnoresRigidRotation) {
+  const int degree = 3;
+  const KnotVector knots = KnotVector::clampedUniform(degree, 9, 0.0, 1.3);
+  RodIntegrals integrals;
+  integrals.build(knots, straightRest(knots), 0.1, 0.0, RodIntegrals::exactGaussCount(degree),
+                  StretchingQuadrature::kExact);
+  const double ea = 3.0;
+  const PointList q = randomConfiguration(straightRest(knots), 1.2, 5u);
+  const int local = degree + 1;
+  const Vec3 omega(0.3, -1.1, 0.7);  // rad/s
+  double largest = 0.0, rotationResidual = 0.0;
+  for (int j = 0; j < integrals.spanCount(); ++j) {
+    const SpanView span = integrals.span(j);
+    const Vec3* x = &q[static_cast<size_t>(j)];
+    Vec3 force[kMaxDegree + 1];
+    for (Vec3& f : force) f.setZero();
+    Eigen::Matrix3d exact[(kMaxDegree + 1) * (kMaxDegree + 1)], material[(kMaxDegree + 1) * (kMaxDegree + 1)];
+    stretchingSpan(span, x, ea, StiffnessMode::kExact, force, exact);
+    materialStiffnessSpan(span, x, ea, material);
+    // The tension term (EA/2) t b'_a b'_b I, t = W3 |C'|^2 - W1, rebuilt from the integrals.
+    double tensionWeight[(kMaxDegree + 1) * (kMaxDegree + 1)] = {};
+    for (int g = 0; g < span.gaussCount; ++g) {
+      const double* db = span.dBasis + g * local;
+      Vec3 tangent = Vec3::Zero();
+      for (int a = 0; a < local; ++a) tangent += db[a] * x[a];
+      const double t = span.w3[g] * tangent.squaredNorm() - span.w1[g];
+      for (int a = 0; a < local; ++a)
+        for (int b = 0; b <= a; ++b) tensionWeight[a * local + b] += 0.5 * ea * t * db[a] * db[b];
+    }
+    for (int a = 0; a < local; ++a) {
+      Vec3 rotation = Vec3::Zero();  // (K_m v)_a for v_b = omega x q_b
+      for (int b = 0; b < local; ++b) {
+        const Eigen::Matrix3d& m = a >= b ? material[a * local + b] : material[b * local + a];
+        rotation += m * omega.cross(x[b]);
+        largest = std::max(largest, m.cwiseAbs().maxCoeff() * omega.norm() * x[b].norm());
+        if (b > a) continue;
+        const Eigen::Matrix3d expected =
+            exact[a * local + b] - tensionWeight[a * local + b] * Eigen::Matrix3d::Identity();
+        EXPECT_LT((material[a * local + b] - expected).cwiseAbs().maxCoeff(),
+                  1e-13 * exact[a * local + b].cwiseAbs().maxCoeff() + 1e-15)
+            << "span " << j << " block " << a << "," << b;
+      }
+      rotationResidual = std::max(rotationResidual, rotation.cwiseAbs().maxCoeff());
+    }
+  }
+  EXPECT_LT(rotationResidual, 1e-13 * largest);
+}
+
 TEST(Stretching, LockingFreeRuleSamplesTheStrainSpaceOnce) {
   // n - 1 strain samples in all (the dimension of the degree d-1 spline space of C').
   for (int degree : {2, 3, 4}) {

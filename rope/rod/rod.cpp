@@ -808,7 +808,6 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
   if (eta > 0.0) materialBlocks_.resize(stiffnessBlocks_.size());
 
   Eigen::Matrix3d blocks[(kMaxDegree + 1) * (kMaxDegree + 1)];
-  double tension[(kMaxDegree + 1) * (kMaxDegree + 1)];
   Eigen::Matrix3d material[(kMaxDegree + 1) * (kMaxDegree + 1)];
   for (int j = 0; j < integrals_.spanCount(); ++j) {
     const SpanView span = integrals_.span(j);
@@ -821,12 +820,12 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
     Eigen::Matrix3d* stored = &stiffnessBlocks_[static_cast<size_t>(j) * blocksPerSpan];
     Eigen::Matrix3d* storedMaterial = eta > 0.0 ? &materialBlocks_[static_cast<size_t>(j) * blocksPerSpan] : nullptr;
     if (about == nullptr) {
-      stretchingEnergy_ += stretchingSpan(span, q, axial, StiffnessMode::kClamped, f, blocks, tension);
+      stretchingEnergy_ += stretchingSpan(span, q, axial, StiffnessMode::kClamped, f, blocks);
     } else {
       // Linearised about p = x1 instead: f(x) ~ f(p) - K(p) (x - p) = [f(p) + K(p) (p - x0)] - K(p) (x - x0),
       // the same form as the first pass with f0 -> f(p) + K(p) (p - x0), K0 -> K(p).
       const Vec3* p = &(*about)[static_cast<size_t>(j)];
-      stretchingEnergy_ += stretchingSpan(span, p, axial, StiffnessMode::kClamped, f, blocks, tension);
+      stretchingEnergy_ += stretchingSpan(span, p, axial, StiffnessMode::kClamped, f, blocks);
       for (int a = 0; a < local; ++a) {
         for (int b = 0; b <= a; ++b) {
           const Eigen::Matrix3d& k = blocks[a * local + b];

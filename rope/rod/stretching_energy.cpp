@@ -8,17 +8,13 @@
 namespace rope {
 
 double stretchingSpan(const SpanView& span, const Vec3* q, double axialStiffness, StiffnessMode mode,
-                      Vec3* force, Eigen::Matrix3d* stiffness, double* tension) {
+                      Vec3* force, Eigen::Matrix3d* stiffness) {
   const int local = span.localCount;
   const double halfEA = 0.5 * axialStiffness;
   double energy = 0.0;
   if (stiffness != nullptr) {
     for (int a = 0; a < local; ++a)
       for (int b = 0; b <= a; ++b) stiffness[a * local + b].setZero();
-    if (tension != nullptr) {
-      for (int a = 0; a < local; ++a)
-        for (int b = 0; b <= a; ++b) tension[a * local + b] = 0.0;
-    }
   }
   for (int g = 0; g < span.gaussCount; ++g) {
     const double w1 = span.w1[g];
@@ -38,10 +34,6 @@ double stretchingSpan(const SpanView& span, const Vec3* q, double axialStiffness
       h.diagonal().array() += isotropic;
       for (int a = 0; a < local; ++a)
         for (int b = 0; b <= a; ++b) stiffness[a * local + b] += (db[a] * db[b]) * h;
-      if (tension != nullptr) {
-        for (int a = 0; a < local; ++a)
-          for (int b = 0; b <= a; ++b) tension[a * local + b] += (db[a] * db[b]) * isotropic;
-      }
     }
   }
   return energy;

@@ -25,16 +25,13 @@ namespace rope {
 enum class StiffnessMode { kExact, kClamped };
 
 // One span: q points at the span's d+1 control points. Adds the forces to force[0..d] and, if
-// stiffness is not null, writes the lower blocks stiffness[a * (d+1) + b], a >= b. If tension is not
-// null as well, writes there the scalar of the tension (geometric) term of each block, so that
-// stiffness - tension * I is the material part b'_a b'_b EA W3 C' C'^T, which is zero on rigid motion
-// (the strain-rate damping of method eq. 20 uses it). Returns the energy (J).
+// stiffness is not null, writes the lower blocks stiffness[a * (d+1) + b], a >= b. Returns the energy (J).
 double stretchingSpan(const SpanView& span, const Vec3* q, double axialStiffness, StiffnessMode mode,
-                      Vec3* force, Eigen::Matrix3d* stiffness, double* tension = nullptr);
+                      Vec3* force, Eigen::Matrix3d* stiffness);
 
 // One span's material stiffness, the lower blocks b'_a b'_b EA W3 C' C'^T (K without its tension
 // term), evaluated with the tangent of q. It maps velocities to the rate of the strain measure,
-// d(W3 |C'|^2)/dt = 2 W3 C'.v', so beta times it is Kelvin–Voigt damping (docs/method.md eq. 20):
+// d(W3 |C'|^2)/dt = 2 W3 C'.v', so materialDamping times it is Kelvin–Voigt damping (method eq. 20):
 // zero on rigid motion, positive semidefinite. Evaluated at the midpoint of a step's start and end it
 // gives the step's strain change exactly (the strain is quadratic in q).
 void materialStiffnessSpan(const SpanView& span, const Vec3* q, double axialStiffness, Eigen::Matrix3d* stiffness);

@@ -791,7 +791,8 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
   const double beta = settings_.stiffnessDamping;
   const double c = internalWeight(h);
   const double eta = settings_.materialDamping;
-  const double massScale = 1.0 + h * alpha;    // M + h alpha M + c ((h^2 + h beta) K + h eta K_m) (method eq. 22a)
+  // M + h alpha M + c ((h^2 + h beta) K + h eta K_m) (method eq. 22a)
+  const double massScale = 1.0 + h * alpha;
   const double stiffScale = c * (h * h + h * beta);
   const double dampScale = c * (h * eta);
   const Vec3 gravity = settings_.gravity;
@@ -818,7 +819,8 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
     Vec3* mv = &massTimesV_[static_cast<size_t>(j)];
     Vec3* mkv = &materialTimesV_[static_cast<size_t>(j)];
     Eigen::Matrix3d* stored = &stiffnessBlocks_[static_cast<size_t>(j) * blocksPerSpan];
-    Eigen::Matrix3d* storedMaterial = eta > 0.0 ? &materialBlocks_[static_cast<size_t>(j) * blocksPerSpan] : nullptr;
+    Eigen::Matrix3d* storedMaterial =
+        eta > 0.0 ? &materialBlocks_[static_cast<size_t>(j) * blocksPerSpan] : nullptr;
     if (about == nullptr) {
       stretchingEnergy_ += stretchingSpan(span, q, axial, StiffnessMode::kClamped, f, blocks);
     } else {
@@ -942,10 +944,10 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
     const size_t u = static_cast<size_t>(i);
     // Backward Euler (and BDF2's restart step) in the one expression of eq. 22, so that its rounding
     // does not depend on the integrator chosen; BDF2 reweights the internal part (eq. 22a).
-    const Vec3 r = c == 1.0 ? Vec3(h * (force_[u] - alpha * massTimesV_[u] - (beta + h) * stiffnessTimesV_[u] - eta * materialTimesV_[u]))
+    const Vec3 damped = (beta + h) * stiffnessTimesV_[u] + eta * materialTimesV_[u];
+    const Vec3 r = c == 1.0 ? Vec3(h * (force_[u] - alpha * massTimesV_[u] - damped))
                             : Vec3(h * (force_[u] - internalForce_[u] - alpha * massTimesV_[u]) +
-                                   (c * h) * (internalForce_[u] - (beta + h) * stiffnessTimesV_[u] - eta * materialTimesV_[u]) +
-                                   historyTerm_[u]);
+                                   (c * h) * (internalForce_[u] - damped) + historyTerm_[u]);
     for (int axis = 0; axis < 3; ++axis) rhs_[static_cast<size_t>(3 * i + axis)] = r[axis];
   }
   if (!system_.factorize()) {

@@ -417,9 +417,9 @@ class Rod {
   std::vector<double> rhs_;
   PointList force_, stiffnessTimesV_, materialTimesV_, massTimesV_;
   // The internal forces (stretching, bending; N per control point) at the start of the trial, their
-  // stiffness blocks (lower triangle per span), the tension scalar of each block (K - tension I is
-  // the material part K_m) and the trial's history term (N s): what recordInternalImpulse() needs
-  // once the trial's end velocities are final.
+  // stiffness blocks and, with materialDamping, material stiffness blocks K_m (lower triangle per
+  // span), and the trial's history term (N s): what recordInternalImpulse() needs once the trial's
+  // end velocities are final.
   PointList internalForce_, historyTerm_;
   std::vector<Eigen::Matrix3d> stiffnessBlocks_;
   std::vector<Eigen::Matrix3d> materialBlocks_;

@@ -100,9 +100,9 @@ struct RodSettings {
   //  - materialDamping: the material's own (Kelvin–Voigt) damping: it resists strain rates (stretching
   //    and bending) and not rigid motion or a swing. A mode of angular frequency w is damped at the
   //    ratio w * materialDamping / 2 of critical (loss factor w * materialDamping): 1 ms damps a 10 kg
-  //    box bouncing on 1 m of the crane scene's 4 mm rope (w about 50 rad/s) at 2.5 % of critical and leaves a swing
-  //    alone, while the stiff modes a discretised rope carries and no rope shows (kHz and above) are
-  //    overdamped.
+  //    box bouncing on 1 m of the crane scene's 4 mm rope (w about 50 rad/s) at 2.5 % of critical
+  //    and leaves a swing alone, while the stiff modes a discretised rope carries and no rope shows
+  //    (kHz and above) are overdamped.
   double massDamping = 0.0;         // 1/s
   double stiffnessDamping = 0.0;    // s
   double materialDamping = 0.0;     // s

@@ -803,7 +803,7 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
   force_.assign(static_cast<size_t>(n), Vec3::Zero());
   internalForce_.assign(static_cast<size_t>(n), Vec3::Zero());
   stiffnessTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
-  materialTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
+  if (eta > 0.0) materialTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
   massTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
   stiffnessBlocks_.resize(static_cast<size_t>(integrals_.spanCount()) * blocksPerSpan);
   if (eta > 0.0) materialBlocks_.resize(stiffnessBlocks_.size());
@@ -817,7 +817,7 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
     Vec3* f = &force_[static_cast<size_t>(j)];
     Vec3* kv = &stiffnessTimesV_[static_cast<size_t>(j)];
     Vec3* mv = &massTimesV_[static_cast<size_t>(j)];
-    Vec3* mkv = &materialTimesV_[static_cast<size_t>(j)];
+    Vec3* mkv = eta > 0.0 ? &materialTimesV_[static_cast<size_t>(j)] : nullptr;
     Eigen::Matrix3d* stored = &stiffnessBlocks_[static_cast<size_t>(j) * blocksPerSpan];
     Eigen::Matrix3d* storedMaterial =
         eta > 0.0 ? &materialBlocks_[static_cast<size_t>(j) * blocksPerSpan] : nullptr;
@@ -835,22 +835,19 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
           if (a != b) f[b] += k.transpose() * (p[a] - q[a]);
         }
       }
-      if (eta > 0.0) {
-        // The damping's strain rate at the step's midpoint, where it is the step's exact strain
-        // change over h (stretching_energy.h): at the end point p, a rope turning by theta in the
-        // step would see sin(theta) of its rigid rotation as strain rate and hold its stretch.
-        Vec3 mid[kMaxDegree + 1];
-        for (int a = 0; a < local; ++a) mid[a] = 0.5 * (q[a] + p[a]);
-        materialStiffnessSpan(span, mid, axial, material);
-      }
     }
-    if (eta > 0.0 && about == nullptr) {
-      // The step's midpoint predicted from the start velocity, q + (h/2) v: with the start's tangent
-      // a rope spinning at omega would see omega h of its rigid rotation as strain rate each step
-      // (measured: a 2 rad/s spin lost 13 % of its angular momentum in 1 s at 1/240 s with eta = 10 ms,
-      // against 4.5 % undamped); the predicted midpoint's error is second order.
+    if (eta > 0.0) {
+      // The damping's strain rate at the step's midpoint, where it is the step's exact strain change
+      // over h (stretching_energy.h): predicted from the start velocity, q + (h/2) v, in the first
+      // pass and (q + p) / 2 once the end p is known. With the start's tangent a rope spinning at
+      // omega sees omega h of its rigid rotation as strain rate each step (a 2 rad/s spin lost 13 % of
+      // its angular momentum in 1 s at 1/240 s with eta = 10 ms, against 4.5 % undamped); with the
+      // end's, a stiff rope turning by theta keeps the stretch the turn made (docs/method.md eq. 20).
       Vec3 mid[kMaxDegree + 1];
-      for (int a = 0; a < local; ++a) mid[a] = q[a] + (0.5 * h) * v[a];
+      for (int a = 0; a < local; ++a) {
+        mid[a] = about == nullptr ? Vec3(q[a] + (0.5 * h) * v[a])
+                                  : Vec3(0.5 * (q[a] + (*about)[static_cast<size_t>(j + a)]));
+      }
       materialStiffnessSpan(span, mid, axial, material);
     }
     for (int a = 0; a < local; ++a) {
@@ -944,7 +941,8 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
     const size_t u = static_cast<size_t>(i);
     // Backward Euler (and BDF2's restart step) in the one expression of eq. 22, so that its rounding
     // does not depend on the integrator chosen; BDF2 reweights the internal part (eq. 22a).
-    const Vec3 damped = (beta + h) * stiffnessTimesV_[u] + eta * materialTimesV_[u];
+    Vec3 damped = (beta + h) * stiffnessTimesV_[u];
+    if (eta > 0.0) damped += eta * materialTimesV_[u];
     const Vec3 r = c == 1.0 ? Vec3(h * (force_[u] - alpha * massTimesV_[u] - damped))
                             : Vec3(h * (force_[u] - internalForce_[u] - alpha * massTimesV_[u]) +
                                    (c * h) * (internalForce_[u] - damped) + historyTerm_[u]);

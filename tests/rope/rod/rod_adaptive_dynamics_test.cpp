@@ -17,26 +17,14 @@
 
 #include "rope/common/error.h"
 #include "rope/rod/rod.h"
+#include "tests/rope/rod/rod_test_util.h"
 
 namespace rope {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// L = sum_ij M_ij q_i x v_j = integral of mu C x Cdot l0' ds (about the origin), kg m^2/s.
-Vec3 angularMomentum(const Rod& rod) {
-  const RodIntegrals& integrals = rod.integrals();
-  const int local = rod.degree() + 1;
-  Vec3 sum = Vec3::Zero();
-  for (int j = 0; j < integrals.spanCount(); ++j) {
-    const SpanView span = integrals.span(j);
-    for (int a = 0; a < local; ++a)
-      for (int b = 0; b < local; ++b)
-        sum += span.mass[a * local + b] *
-               rod.controlPoints()[static_cast<size_t>(j + a)].cross(rod.velocities()[static_cast<size_t>(j + b)]);
-  }
-  return sum;
-}
+using test::angularMomentum;  // L = sum_ij M_ij q_i x v_j, about the origin
 
 struct Drift {
   double linear = 0.0;   // max |P - P0| / |P0| over the run

@@ -10,7 +10,6 @@
 #include <string>
 
 #include "rope/rod/rod.h"
-#include "rope/spline/gauss_legendre.h"
 #include "tests/rope/rod/rod_test_util.h"
 
 namespace rope {

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -13,24 +12,21 @@
 
 #include "rope/common/error.h"
 #include "rope/rod/rod.h"
-#include "rope/spline/gauss_legendre.h"
 
 namespace rope::test {
 
-// Angular momentum about the origin, integral of mu C(s) x V(s) l0'(s) ds, kg m^2/s: exact for a
-// straight rest curve (l0' = 1; the integrand is a polynomial of degree 2d per span, 5 Gauss points).
+// Angular momentum about the origin, integral of mu C(s) x V(s) l0'(s) ds, kg m^2/s, through the
+// rod's own mass blocks: sum_j sum_ab M^j_ab q_a x v_b, exact for any rest curve.
 inline Vec3 angularMomentum(const Rod& rod) {
-  const GaussRule rule = gaussLegendre(5);
-  const std::vector<double>& knots = rod.knots().values();
-  const double mu = rod.settings().effectiveLinearDensity();
+  const RodIntegrals& integrals = rod.integrals();
+  const int local = rod.degree() + 1;
   Vec3 sum = Vec3::Zero();
-  for (std::size_t j = 0; j + 1 < knots.size(); ++j) {
-    const double a = std::max(knots[j], rod.beginParameter()), b = std::min(knots[j + 1], rod.endParameter());
-    if (b <= a) continue;
-    for (int q = 0; q < rule.count; ++q) {
-      const double s = 0.5 * (a + b) + 0.5 * (b - a) * rule.nodes[q];
-      sum += 0.5 * (b - a) * rule.weights[q] * mu * rod.restMetric(s) * rod.position(s).cross(rod.velocity(s));
-    }
+  for (int j = 0; j < integrals.spanCount(); ++j) {
+    const SpanView span = integrals.span(j);
+    for (int a = 0; a < local; ++a)
+      for (int b = 0; b < local; ++b)
+        sum += span.mass[a * local + b] *
+               rod.controlPoints()[static_cast<size_t>(j + a)].cross(rod.velocities()[static_cast<size_t>(j + b)]);
   }
   return sum;
 }

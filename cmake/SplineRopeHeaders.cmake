@@ -37,6 +37,7 @@ set(SPLINEROPE_ROPE_API_HEADERS
   rope/tractrix/polygon_adaptation.h
 )
 set(SPLINEROPE_ROPE_SUPPORT_HEADERS
+  rope/common/gmres.h          # bullet_bridge/contact/body_contacts.h holds a solver
   rope/rod/banded_matrix.h     # Rod holds its step matrix
   rope/rod/pin_constraints.h   # Rod holds its constrained solver; Pin (Rod::pins()) is API
   rope/rod/rod_integrals.h     # Rod holds its integrals (Rod::integrals() is for diagnostics)

@@ -44,6 +44,7 @@
 #include "bullet_bridge/contact/friction_anchors.h"
 #include "bullet_bridge/contact/line_contact.h"
 #include "bullet_bridge/rope_settings.h"
+#include "rope/common/gmres.h"
 #include "rope/rod/rod.h"
 
 namespace rope::bullet {
@@ -98,9 +99,14 @@ class BodyContacts {
                   const BulletRopeSettings& settings, const Exclusion& excluded, const FrictionOf& friction, double h,
                   RopeStepRecord& step);
   // Solves the sliding samples' friction bounds f = f_n(f) exactly for the current trial (see the
-  // .cpp) and corrects the trial by the change; false if there was nothing to solve or the small
-  // system failed (the trial is then unchanged).
+  // .cpp) and corrects the trial by the change; false if there was nothing to solve or the solve did
+  // not converge (the trial is then unchanged).
   bool solveSlidingBounds(Rod& rod, double h);
+  // Its pieces: each sliding sample's basis, impulse per unit bound, normal-force gradient and
+  // right-hand side; the trial's change correction_ = R J(delta); and (M delta)_j from it.
+  void gatherSlidingTerms(const Rod& rod, double h);
+  void respondToBoundChange(const Rod& rod, const double* delta);
+  double normalForceChange(int j) const;
   void capBodies(double h, double share);
   // The sample's spring (sampleSpring) with the normal turning and the gap opening as the rope
   // slides over a curved surface (see the .cpp).
@@ -120,14 +126,19 @@ class BodyContacts {
   btNodeStack treeStack_;          // and its traversal stack
   std::vector<Sample> samples_;
   FrictionAnchors anchors_;
-  // solveSlidingBounds' workspace: the sliding samples, their trial responses (3n each) and the
-  // small dense system.
+  // solveSlidingBounds' workspace: the sliding samples; per sample its first control point, basis
+  // values, impulse per unit bound (-mu h d, N s/N) and normal force's gradient g (N s/m); the
+  // right-hand side and the bounds' change (N); the trial's change (3n, m/s).
   bool exactBounds_ = true;
   std::vector<int> sliding_;
-  std::vector<double> responses_;
-  std::vector<double> correction_;
-  Eigen::MatrixXd boundSystem_;
+  std::vector<int> slidingFirst_;
+  std::vector<double> slidingBasis_;
+  std::vector<Vec3> slidingPull_;
+  std::vector<Vec3> slidingGradient_;
   Eigen::VectorXd boundRhs_;
+  Eigen::VectorXd boundDelta_;
+  std::vector<double> correction_;
+  GmresSolver gmres_;
 };
 
 }  // namespace rope::bullet

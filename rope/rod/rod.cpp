@@ -596,6 +596,21 @@ void Rod::trialImpulseResponses(double s, double* responses) const {
   const_cast<ConstrainedSolver&>(solver_).solveHomogeneous3(system_, responses, 3 * first);
 }
 
+void Rod::trialGeneralizedResponse(double* impulses) const {
+  if (!trialValid_ || !solver_.ready()) {
+    throw InvalidArgument("trial", "none", "solveTrial() must have succeeded on this rod since the last change");
+  }
+  const int n3 = 3 * controlPointCount();
+  int firstRow = n3;
+  for (int i = 0; i < n3; ++i) {
+    if (!std::isfinite(impulses[i])) throw InvalidArgument("impulses", formatValue(impulses[i]), "must be finite");
+    if (impulses[i] != 0.0 && firstRow == n3) firstRow = i;
+  }
+  if (firstRow == n3) return;  // no impulse, no response
+  // The scratch solver is logically const here: it only reuses the trial's Schur factor.
+  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous(system_, impulses, firstRow);
+}
+
 void Rod::correctTrial(const double* dv) {
   if (!trialValid_) throw InvalidArgument("trial", "none", "solveTrial() must have succeeded since the last change");
   const int n = controlPointCount();

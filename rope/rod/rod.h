@@ -251,6 +251,12 @@ class Rod {
   // All three axes at once (responses: 3 columns of 3n doubles, axis 0, 1, 2), bitwise the same as
   // three calls with axis 0, 1, 2, in one pass over the factor (about half the time).
   void trialImpulseResponses(double s, double* responses) const;
+  // In place: generalised impulses on the control points (3n doubles, N s, x y z per point; e.g. sums
+  // of impulses at curve points times their basis values) -> the change of the trial's control-point
+  // velocities they would cause, pins held. One O(n) solve for any number of impulses: a matrix-free
+  // product for iterative solvers (contact/body_contacts.cpp's sliding bounds). Non-finite entries
+  // are refused (InvalidArgument "impulses").
+  void trialGeneralizedResponse(double* impulses) const;
   // Adds dv (3n doubles) to the trial velocities (and h dv to its positions): the effect of extra
   // impulses computed with trialImpulseResponse.
   void correctTrial(const double* dv);

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "rope/common/error.h"
+#include "rope/spline/bspline_basis.h"
 #include "tests/rope/rod/rod_test_util.h"
 
 namespace rope {
@@ -389,6 +390,52 @@ TEST(RodSplitStep, MarkedInteractionGetsAKnot) {
   const StepReport report = rod.commitTrial();
   EXPECT_EQ(rod.knots().multiplicity(0.4321), 1);
   EXPECT_GE(report.insertions, 1);
+}
+
+// A generalised impulse that is the sum of two curve-point impulses, b(s_k) d_k, gets the sum of
+// their responses from one solve (what the sliding-bound GMRES products rely on); without a trial
+// or with a non-finite entry it is refused by name, the input untouched in the latter case.
+TEST(RodSplitStep, GeneralizedResponseIsTheSumOfThePointResponses) {
+  Rod rod = bentRod(9, Vec3(0, 0, 0), 4);
+  rod.pin(rod.beginParameter());
+  std::vector<double> impulses(static_cast<size_t>(3 * rod.controlPointCount()), 0.0);
+  try {
+    rod.trialGeneralizedResponse(impulses.data());
+    ADD_FAILURE() << "answered without a trial";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.parameter(), "trial");
+  }
+  ASSERT_TRUE(rod.solveTrial(1.0 / 240.0).ok);
+  const size_t size = impulses.size();
+  const double s[2] = {0.23 * rod.endParameter(), 0.81 * rod.endParameter()};
+  const Vec3 direction[2] = {Vec3(0.3, -1.7, 0.8), Vec3(-2.0, 0.1, 0.5)};
+  std::vector<double> expected(size, 0.0), single(size);
+  for (int k = 0; k < 2; ++k) {
+    rod.trialImpulseResponse(s[k], direction[k], single.data());
+    for (size_t i = 0; i < size; ++i) expected[i] += single[i];
+    BasisValues basis;
+    const int first = rod.knots().findSpan(s[k]) - rod.degree();
+    evaluateBasis(rod.knots(), first + rod.degree(), s[k], 0, basis);
+    for (int a = 0; a <= rod.degree(); ++a)
+      for (int c = 0; c < 3; ++c)
+        impulses[static_cast<size_t>(3 * (first + a) + c)] += basis.d[0][static_cast<size_t>(a)] * direction[k][c];
+  }
+  rod.trialGeneralizedResponse(impulses.data());
+  double scale = 0.0;
+  for (const double x : expected) scale = std::max(scale, std::abs(x));
+  ASSERT_GT(scale, 0.0);
+  for (size_t i = 0; i < size; ++i) EXPECT_NEAR(impulses[i], expected[i], 1e-13 * scale) << "entry " << i;
+  // The pinned end does not move.
+  for (size_t i = 0; i < 3; ++i) EXPECT_NEAR(impulses[i], 0.0, 1e-13 * scale);
+  std::vector<double> bad(size, 0.0);
+  bad[5] = std::numeric_limits<double>::infinity();
+  try {
+    rod.trialGeneralizedResponse(bad.data());
+    ADD_FAILURE() << "accepted an infinite impulse";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.parameter(), "impulses");
+  }
+  EXPECT_EQ(bad[5], std::numeric_limits<double>::infinity());
 }
 
 }  // namespace

@@ -130,6 +130,7 @@ class RopeObject {
   double winchTension(RopeEnd end) const;
   // How much rest length can be reeled in at `end` (m): the rope keeps Rod::minimumRestLength() and
   // RodSettings::minKnotSpacing from every pin, clamp, attachment and queued load not at that end.
+  // Exactly 0 within rounding (1e-12 of the rest length): a winch that stalled there reads 0.
   double reelInLimit(RopeEnd end) const;
 
   // ---- cutting ([A] §5.1) ----

@@ -44,7 +44,7 @@ double RopeObject::reelInLimit(RopeEnd end) const {
                                       std::max(at, attachment.s));
     limit = std::min(limit, distance - rod_.settings().minKnotSpacing);
   }
-  return std::max(limit, 0.0);
+  return limit > 1e-12 * rod_.restLength() ? limit : 0.0;  // as Rod::reelInLimit: rounding is zero
 }
 
 void RopeObject::moveRopeEnd(RopeEnd end, double length) {

@@ -302,7 +302,8 @@ class Rod {
   // its velocity field and the rest metric of the remaining rope do not change. A knot enters at the
   // middle of the end span (exact insertion) when the span grows past twice the nominal spacing
   // settings.restLength / (settings.initialControlPoints - degree); the neighbouring knot leaves
-  // (Rod::removeKnot) before the end span would become shorter than settings.minKnotSpacing. Pins and
+  // (Rod::removeKnot) before the end span would become shorter than half the nominal spacing (at least
+  // settings.minKnotSpacing; docs/method.md §16). Pins and
   // clamps at the end move with it; other pins, queued loads and the trial keep their parameters (the
   // trial is dropped). Mass changes by linearDensity * length. Throws InvalidArgument("length", ...)
   // and changes nothing for a non-finite length, a rest length that would fall below
@@ -310,6 +311,7 @@ class Rod {
   void payOut(End end, double length);
   // How much rest length (m) can be reeled in at `end`: down to minimumRestLength(), and no closer
   // than settings.minKnotSpacing to a pin, clamp, point mass or queued load that is not at that end.
+  // Exactly 0 within rounding (1e-12 of the rest length, what payOut accepts beyond it).
   double reelInLimit(End end) const;
   double minimumRestLength() const { return 2.0 * settings_.minKnotSpacing; }  // m
 

@@ -162,7 +162,7 @@ TEST(ClampToBody, RemovableAtRunTime) {
   // From here the box falls from wherever its bounce on the rope left it, at least as far as free fall
   // takes it (Bullet's step: y_n = y0 + n h v0 - g h^2 n (n + 1) / 2 after n steps) and a little
   // further: the rope's end, clamped on the box's face, overlaps the box by its radius once released and
-  // pushes it off (measured 1.4 cm in 0.2 s).
+  // pushes it off (measured 1.90 cm in 0.2 s on this code; 1.4 cm when the bound was set).
   const double y0 = static_cast<double>(box->getCenterOfMassPosition().y());
   const double v0 = static_cast<double>(box->getLinearVelocity().y());
   const int n = 48;  // 0.2 s

@@ -72,6 +72,10 @@ struct RopeStepRecord {
   double maxInsertionRelaxation = 0.0;
   double unrelaxedInsertionEnergy = 0.0;
   int solvePasses = 0;           // rod solves in the substep (contact active set, contact/contact_response.h)
+  // The active set had not settled when its last pass was kept (after 6 solves; rope_object.cpp):
+  // some contact of the kept trial pulls, sticks beyond mu f_n, or slides on a bound 5 % off its
+  // normal force. A quality warning, not a failure (RopeWarnings::unsettledContactSteps counts it).
+  bool contactsUnsettled = false;
   int ropeContacts = 0;          // active rope-rope and self-contacts this rope takes part in
   double maxSelfOverlap = 0.0;   // m, deepest overlap with itself or another rope at the start of the substep
   // Wall-clock time of the rope's parts of the substep, s (profiling only; not deterministic).

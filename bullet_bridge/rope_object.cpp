@@ -323,7 +323,11 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
     }
     bodyContacts_.queue(rod_);
     report = rod_.solveTrial(h);
-    if (!report.ok || lastStep_.contacts == 0 || pass >= kMaxSolvePasses) break;
+    if (!report.ok || lastStep_.contacts == 0) break;
+    if (pass >= kMaxSolvePasses) {
+      lastStep_.contactsUnsettled = !bodyContacts_.settled(rod_, h);
+      break;
+    }
     if (!bodyContacts_.update(rod_, h, contacts_, lastStep_)) break;
   }
   return report;

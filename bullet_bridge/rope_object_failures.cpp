@@ -73,6 +73,7 @@ void RopeObject::countSubstep() {
   lastStep_.droppedAttachments = droppedAttachments_;
   droppedAttachments_ = 0;
   warnings_.skippedBodies += lastStep_.skippedBodies;
+  if (lastStep_.contactsUnsettled) ++warnings_.unsettledContactSteps;
   if (resting_) {
     ++warnings_.restingSubsteps;
   } else if (lastStep_.ok) {

@@ -19,6 +19,9 @@ struct RopeWarnings {
   int consecutiveFailures = 0;   // failed substeps since the last successful one (0: the last one succeeded)
   long timesPutToRest = 0;       // times the rope was put to rest (RopeObject::kFailuresBeforeRest failures in a row)
   long restingSubsteps = 0;      // substeps spent at rest (frozen, still colliding; not counted in failedSteps)
+  // Substeps whose contact active set had not settled at its last pass (RopeStepRecord::
+  // contactsUnsettled): a quality warning, not a failure, so not in total().
+  long unsettledContactSteps = 0;
   long total() const { return failedSteps + skippedBodies + droppedAttachments + timesPutToRest; }
 };
 

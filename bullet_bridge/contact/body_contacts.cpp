@@ -417,44 +417,61 @@ double BodyContacts::normalForceChange(int j) const {
   return slidingGradient_[u].dot(velocity);
 }
 
+BodyContacts::Change BodyContacts::changeFor(const Sample& sample, const Rod& rod, double h, Vec3& uNew,
+                                             double& normalForce, Vec3& tangentForce) {
+  uNew = rod.trialVelocity(sample.geometry.s);
+  const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, uNew, h);
+  normalForce = force.dot(sample.normal);
+  if (normalForce < 0.0) return Change::kRelease;  // pulls the rope onto the body
+  const double mu = sample.law.friction;
+  if (!(mu > 0.0)) return Change::kNone;
+  const SampleFriction& friction = sample.friction;
+  if (!friction.sliding) {
+    tangentForce = tangential(force, sample.normal);
+    // The spring would need more than mu f_n: the sample slides.
+    return tangentForce.norm() <= mu * normalForce * (1.0 + kConeTolerance) ? Change::kNone : Change::kSlide;
+  }
+  return std::abs(normalForce - friction.normalForce) > kNormalForceTolerance * std::max(normalForce, friction.normalForce)
+             ? Change::kRebound
+             : Change::kNone;
+}
+
 bool BodyContacts::update(Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step) {
   solveSlidingBounds(rod, h);
   bool changed = false;
   for (Sample& sample : samples_) {
     if (!sample.active) continue;
-    const Vec3 uNew = rod.trialVelocity(sample.geometry.s);
-    const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, uNew, h);
-    const double normalForce = force.dot(sample.normal);
-    if (normalForce < 0.0) {
-      sample.active = false;  // pulls the rope onto the body: released for the rest of the substep
+    Vec3 uNew, tangentForce;
+    double normalForce = 0.0;
+    const Change change = changeFor(sample, rod, h, uNew, normalForce, tangentForce);
+    if (change == Change::kNone) continue;
+    changed = true;
+    if (change == Change::kRelease) {
+      sample.active = false;  // released for the rest of the substep
       records[static_cast<std::size_t>(sample.record)].active = false;
       --step.contacts;
-      changed = true;
       continue;
     }
-    const double mu = sample.law.friction;
-    if (!(mu > 0.0)) continue;
     SampleFriction& friction = sample.friction;
-    if (!friction.sliding) {
-      const Vec3 tangentForce = tangential(force, sample.normal);
-      const double magnitude = tangentForce.norm();
-      if (magnitude <= mu * normalForce * (1.0 + kConeTolerance)) continue;
-      // The spring would need more than mu f_n: the sample slides, along the way the force pushes it.
+    if (change == Change::kSlide) {  // along the way the force pushes it
       friction.sliding = true;
-      friction.direction = -tangentForce / magnitude;
+      friction.direction = -tangentForce / tangentForce.norm();
       friction.speed = std::max(tangential(uNew - sample.bodyVelocity, sample.normal).norm(), sample.law.frictionVelocity);
-      friction.normalForce = normalForce;
-      changed = true;
-    } else if (std::abs(normalForce - friction.normalForce) >
-               kNormalForceTolerance * std::max(normalForce, friction.normalForce)) {
-      friction.normalForce = normalForce;
-      changed = true;
-    } else {
-      continue;
     }
+    friction.normalForce = normalForce;
     sample.spring = springOf(sample, h);
   }
   return changed;
+}
+
+bool BodyContacts::settled(const Rod& rod, double h) const {
+  for (const Sample& sample : samples_) {
+    if (!sample.active) continue;
+    Vec3 uNew, tangentForce;
+    double normalForce = 0.0;
+    if (changeFor(sample, rod, h, uNew, normalForce, tangentForce) != Change::kNone) return false;
+  }
+  return true;
 }
 
 void BodyContacts::finish(Rod& rod, double h, double concentratedContactRatio,

@@ -65,6 +65,9 @@ class BodyContacts {
   // Whether update() may solve strongly coupled sliding bounds exactly (solveSlidingBounds); default on.
   void setExactBounds(bool exact) { exactBounds_ = exact; }
   bool update(Rod& rod, double h, std::vector<RopeContactRecord>& records, RopeStepRecord& step);
+  // Whether update() would change nothing for the current trial (without re-solving the sliding
+  // bounds): the active set has settled. For the last pass, which is kept without an update().
+  bool settled(const Rod& rod, double h) const;
   void finish(Rod& rod, double h, double concentratedContactRatio, std::vector<RopeContactRecord>& records);
   // Forgets the samples of this substep (the anchors stay) / everything.
   void dropSamples() { samples_.clear(); }
@@ -76,6 +79,8 @@ class BodyContacts {
   void prefetch() const;
 
  private:
+  // What update() does with one active sample after a trial.
+  enum class Change { kNone, kRelease, kSlide, kRebound };
   struct Sample {
     ContactSample geometry;
     btRigidBody* body = nullptr;                // receives the opposite impulse (nullptr: static, kinematic)
@@ -102,6 +107,10 @@ class BodyContacts {
   // .cpp) and corrects the trial by the change; false if there was nothing to solve or the solve did
   // not converge (the trial is then unchanged).
   bool solveSlidingBounds(Rod& rod, double h);
+  // The change for `sample` at the current trial, with its end-of-step velocity, normal force and
+  // (sticking samples) tangential force, which update() uses to apply it.
+  static Change changeFor(const Sample& sample, const Rod& rod, double h, Vec3& uNew, double& normalForce,
+                          Vec3& tangentForce);
   // Its pieces: each sliding sample's basis, impulse per unit bound, normal-force gradient and
   // right-hand side; the trial's change correction_ = R J(delta); and (M delta)_j from it.
   void gatherSlidingTerms(const Rod& rod, double h);

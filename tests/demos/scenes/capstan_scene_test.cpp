@@ -235,9 +235,9 @@ namespace {
 // The contact active set keeps its last pass after six solves; a pass that still wanted a change is
 // reported (RopeStepRecord::contactsUnsettled) and counted (RopeWarnings::unsettledContactSteps),
 // not thrown. Round a drum with two turns it is rare (measured over 1 s: 5 and 6 of 240 substeps at
-// mu = 0.3 and 0.9 / 1.1 exp(mu theta), 6 and 2 at mu = 1; with half a turn none except 5 at mu = 1 and 1.1; none with a quarter turn, in the knot scene or
-// on ropes resting on a floor); every flagged substep used all six solves, and the counter is the sum
-// of the flags.
+// mu = 0.3 and 0.9 / 1.1 exp(mu theta), 6 and 2 at mu = 1; with half a turn none except 5 at mu = 1
+// and 1.1; none with a quarter turn, in the knot scene or on ropes resting on a floor); every flagged
+// substep used all six solves, and the counter is the sum of the flags.
 TEST(CapstanScene, UnsettledActiveSetIsReportedCountedAndRare) {
   for (const double friction : {0.3, 1.0}) {
     for (const double ratio : {0.9, 1.1}) {

@@ -163,7 +163,7 @@ void Rod::payOut(End end, double length) {
   // nominal spacing (a quarter of the span at which paying out inserts one: hysteresis). Waiting until
   // minKnotSpacing left a span 60 times shorter than its neighbour, where removing the knot moved the
   // curve by a strain comparable to the rope's own: a 10 kg box on 1.3 m of a stiff rope reeled in
-  // at 0.1 m/s had its control points kicked to up to 86 m/s (docs/method.md §16).
+  // at 0.1 m/s had its control points kicked to up to 88 m/s (docs/method.md §16).
   const double removeBelow = std::max(settings_.minKnotSpacing, 0.5 * spacing);
   double remaining = length;
   while (remaining != 0.0) {

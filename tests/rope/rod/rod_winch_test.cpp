@@ -157,7 +157,8 @@ TEST(RodWinch, ReelingInPastAKnotNearTheEndKeepsTheRopeMovingTogether) {
       if (i < 20) continue;  // the reeling starts from rest: the rope's axial ringing first
       for (const Vec3& u : v) spread = std::max(spread, (u - v.front()).norm());
     }
-    std::printf("knot %.4f m from the end: largest velocity spread %.4f m/s, %d control points\n", c.knot, spread, rod.controlPointCount());
+    std::printf("knot %.4f m from the end: largest velocity spread %.4f m/s, %d control points\n", c.knot, spread,
+                rod.controlPointCount());
     EXPECT_LT(spread, 0.15) << "knot at " << c.knot << " m from the end";
   }
 }

@@ -340,7 +340,7 @@ bool BodyContacts::solveSlidingBounds(Rod& rod, double h) {
   // resting jitter 6 mm/s instead of 3). |M 1|_inf stands in for M's row-sum norm: a lower bound of
   // it, equal where a row's entries share a sign, as round a support, where raising any bound raises
   // the tension and with it every normal force.
-  boundDelta_.setOnes(m);
+  boundDelta_.assign(static_cast<std::size_t>(m), 1.0);
   respondToBoundChange(rod, boundDelta_.data());
   double coupling = 0.0;
   for (int j = 0; j < m; ++j) coupling = std::max(coupling, std::abs(normalForceChange(j)));
@@ -356,8 +356,9 @@ bool BodyContacts::solveSlidingBounds(Rod& rod, double h) {
   // A negative bound is a sample that lifts off: bounded by zero here, released by update().
   for (int i = 0; i < m; ++i) {
     Sample& sample = samples_[static_cast<std::size_t>(sliding_[static_cast<std::size_t>(i)])];
-    const double bound = std::max(0.0, sample.friction.normalForce + boundDelta_(i));
-    boundDelta_(i) = bound - sample.friction.normalForce;
+    const std::size_t u = static_cast<std::size_t>(i);
+    const double bound = std::max(0.0, sample.friction.normalForce + boundDelta_[u]);
+    boundDelta_[u] = bound - sample.friction.normalForce;
     sample.friction.normalForce = bound;
     sample.spring = springOf(sample, h);
   }
@@ -374,7 +375,7 @@ void BodyContacts::gatherSlidingTerms(const Rod& rod, double h) {
   slidingBasis_.resize(m * width);
   slidingPull_.resize(m);
   slidingGradient_.resize(m);
-  boundRhs_.resize(static_cast<Eigen::Index>(m));
+  boundRhs_.resize(m);
   BasisValues basis;
   for (std::size_t j = 0; j < m; ++j) {
     const Sample& sample = samples_[static_cast<std::size_t>(sliding_[j])];
@@ -386,7 +387,7 @@ void BodyContacts::gatherSlidingTerms(const Rod& rod, double h) {
     slidingPull_[j] = -sample.law.friction * h * sample.friction.direction;
     slidingGradient_[j] = -(h * sample.spring.stiffness + sample.spring.damping).transpose() * sample.normal;
     const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, rod.trialVelocity(s), h);
-    boundRhs_(static_cast<Eigen::Index>(j)) = force.dot(sample.normal) - sample.friction.normalForce;
+    boundRhs_[j] = force.dot(sample.normal) - sample.friction.normalForce;
   }
   correction_.resize(static_cast<std::size_t>(3 * rod.controlPointCount()));
 }

@@ -144,8 +144,8 @@ class BodyContacts {
   std::vector<double> slidingBasis_;
   std::vector<Vec3> slidingPull_;
   std::vector<Vec3> slidingGradient_;
-  Eigen::VectorXd boundRhs_;
-  Eigen::VectorXd boundDelta_;
+  std::vector<double> boundRhs_;
+  std::vector<double> boundDelta_;
   std::vector<double> correction_;
   GmresSolver gmres_;
 };

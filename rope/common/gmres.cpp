@@ -19,27 +19,36 @@ GmresResult GmresSolver::solve(int size, const Product& apply, const double* b, 
   }
   if (!std::isfinite(rhsNorm)) return result;
   const int k = std::max(1, std::min(settings.maxIterations, size));
-  if (basis_.rows() < size || basis_.cols() < k + 1) basis_.resize(std::max<Eigen::Index>(basis_.rows(), size), k + 1);
+  // The workspace only grows (Eigen's resize reallocates on any change of size, and the number of
+  // sliding samples changes from pass to pass); the solve uses its leading part.
+  if (basis_.rows() < size || basis_.cols() < k + 1) {
+    basis_.resize(std::max<Eigen::Index>(basis_.rows(), size), std::max<Eigen::Index>(basis_.cols(), k + 1));
+  }
   if (hessenberg_.rows() < k + 1) hessenberg_.resize(k + 1, k);
-  cosines_.resize(k);
-  sines_.resize(k);
-  residual_.setZero(k + 1);
-  product_.resize(size);
+  if (cosines_.size() < k) {
+    cosines_.resize(k);
+    sines_.resize(k);
+    coefficients_.resize(k);
+  }
+  if (residual_.size() < k + 1) residual_.resize(k + 1);
+  if (product_.size() < size) product_.resize(size);
+  residual_.head(k + 1).setZero();
+  auto product = product_.head(size);
   basis_.col(0).head(size) = rhs / rhsNorm;
   residual_(0) = rhsNorm;  // the least-squares right-hand side |b| e_1, rotated as H is
   int used = 0;
   double residualNorm = rhsNorm;
   for (int j = 0; j < k; ++j) {
-    apply(basis_.col(j).data(), product_.data());
+    apply(basis_.col(j).data(), product.data());
     ++result.iterations;
-    if (!product_.allFinite()) break;
+    if (!product.allFinite()) break;
     // Arnoldi with modified Gram-Schmidt: H(0..j+1, j).
     for (int i = 0; i <= j; ++i) {
-      const double h = basis_.col(i).head(size).dot(product_);
+      const double h = basis_.col(i).head(size).dot(product);
       hessenberg_(i, j) = h;
-      product_ -= h * basis_.col(i).head(size);
+      product -= h * basis_.col(i).head(size);
     }
-    const double next = product_.norm();
+    const double next = product.norm();
     hessenberg_(j + 1, j) = next;
     // The earlier rotations, then a new one that zeroes H(j+1, j).
     for (int i = 0; i < j; ++i) {
@@ -58,12 +67,14 @@ GmresResult GmresSolver::solve(int size, const Product& apply, const double* b, 
     used = j + 1;
     residualNorm = std::abs(residual_(j + 1));
     if (residualNorm <= settings.relativeTolerance * rhsNorm || !(next > 0.0)) break;  // converged, or exact
-    basis_.col(j + 1).head(size) = product_ / next;
+    basis_.col(j + 1).head(size) = product / next;
   }
   if (used == 0) return result;
   // x = V y, H y = the rotated residual (back substitution on the triangle).
-  coefficients_ = hessenberg_.topLeftCorner(used, used).triangularView<Eigen::Upper>().solve(residual_.head(used));
-  solution = basis_.topLeftCorner(size, used) * coefficients_;
+  auto coefficients = coefficients_.head(used);
+  coefficients = residual_.head(used);
+  hessenberg_.topLeftCorner(used, used).triangularView<Eigen::Upper>().solveInPlace(coefficients);
+  solution.noalias() = basis_.topLeftCorner(size, used) * coefficients;
   result.relativeResidual = residualNorm / rhsNorm;
   result.converged = result.relativeResidual <= settings.relativeTolerance;
   return result;

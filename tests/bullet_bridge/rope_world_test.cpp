@@ -187,7 +187,7 @@ TEST(RopeWorldScenario, RopeAndBoxCollidingWithoutDampingNeverGainEnergy) {
     box->setFriction(0.0);
     RodSettings rod = limpRope();
     rod.gravity = Vec3::Zero();
-    rod.massDamping = rod.stiffnessDamping = 0.0;
+    rod.massDamping = rod.stiffnessDamping = rod.materialDamping = 0.0;
     ASSERT_TRUE(rod.adaptive);  // the default
     rod.restLength = 0.8;
     BulletRopeSettings settings;

@@ -306,9 +306,9 @@ void RopeObject::queueClampTangent(const Attachment& attachment, btRigidBody& bo
 StepReport RopeObject::solveTrialWithContacts(double h) {
   // Unilateral contact and Coulomb friction by a small active set (contact/body_contacts.h: update): samples
   // that come out pulling are released, sticking samples that need more than mu f_n slide, and the
-  // trial step is solved again, at most kMaxSolvePasses times. The rod itself does not change until
-  // endSubstep commits the last trial.
-  constexpr int kMaxSolvePasses = 6;
+  // trial step is solved again, at most kMaxContactSolvePasses times. The rod itself does not change
+  // until endSubstep commits the last trial.
+  constexpr int kMaxSolvePasses = kMaxContactSolvePasses;
   StepReport report;
   for (int pass = 1;; ++pass) {
     lastStep_.solvePasses = pass;

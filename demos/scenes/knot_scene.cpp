@@ -48,11 +48,10 @@ RodSettings KnotSceneSettings::defaultRod() {
   rod.radius = 0.005;
   rod.youngsModulus = 1.0e8;      // EA = 7.85 kN
   rod.bendingStiffness = 1.0e-4;  // N m^2: a limp cord that bends around its own diameter
-  // The cord's own (Kelvin–Voigt) damping, the one damping the scene sets: undamped, the knot overshoots
-  // the grippers' 3 N pull (held tension 3.45 N, overlap 1.94 mm, 0.198 m of rope in the knot instead
-  // of 0.218 m). Mass and stiffness damping (0.5 /s, 1 ms) did the same job before and also dragged the
-  // rope's rigid motion and swing (measured 2026-11-29).
-  rod.materialDamping = 1.0e-3;
+  // Damping: the default material (Kelvin–Voigt) damping, 1 ms. Undamped, the knot overshoots the
+  // grippers' 3 N pull (held tension 3.45 N, overlap 1.94 mm, 0.198 m of rope in the knot instead of
+  // 0.218 m); the mass and stiffness damping (0.5 /s, 1 ms) the scene set before did the same job and
+  // also dragged the rope's rigid motion and swing (measured 2026-11-29).
   rod.maxControlPoints = 160;
   return rod;
 }

@@ -308,7 +308,6 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
   // that come out pulling are released, sticking samples that need more than mu f_n slide, and the
   // trial step is solved again, at most kMaxContactSolvePasses times. The rod itself does not change
   // until endSubstep commits the last trial.
-  constexpr int kMaxSolvePasses = kMaxContactSolvePasses;
   StepReport report;
   for (int pass = 1;; ++pass) {
     lastStep_.solvePasses = pass;
@@ -324,7 +323,7 @@ StepReport RopeObject::solveTrialWithContacts(double h) {
     bodyContacts_.queue(rod_);
     report = rod_.solveTrial(h);
     if (!report.ok || lastStep_.contacts == 0) break;
-    if (pass >= kMaxSolvePasses) {
+    if (pass >= kMaxContactSolvePasses) {
       lastStep_.contactsUnsettled = !bodyContacts_.settled(rod_, h);
       break;
     }

@@ -72,7 +72,7 @@ struct RopeStepRecord {
   double maxInsertionRelaxation = 0.0;
   double unrelaxedInsertionEnergy = 0.0;
   int solvePasses = 0;           // rod solves in the substep (contact active set, contact/contact_response.h)
-  // The active set had not settled when its last pass was kept (after 6 solves; rope_object.cpp):
+  // The active set had not settled when its last pass was kept (RopeObject::kMaxContactSolvePasses):
   // some contact of the kept trial pulls, sticks beyond mu f_n, or slides on a bound 5 % off its
   // normal force. A quality warning, not a failure (RopeWarnings::unsettledContactSteps counts it).
   bool contactsUnsettled = false;

@@ -7,13 +7,14 @@ double bendingSpan(const SpanView& span, const Vec3* q, Vec3* force, double sum)
   const int local = span.localCount;
   // K_b annihilates translations (sum_b K_ab = 0), so measuring from a local origin gives the same
   // value without the cancellation of large absolute coordinates.
-  const Vec3 origin = q[0];
+  Vec3 x[kMaxDegree + 1];
+  for (int a = 0; a < local; ++a) x[a] = q[a] - q[0];
   double energy = sum;
   for (int a = 0; a < local; ++a)
-    for (int b = 0; b < local; ++b) energy += 0.5 * span.bending[a * local + b] * (q[a] - origin).dot(q[b] - origin);
+    for (int b = 0; b < local; ++b) energy += 0.5 * span.bending[a * local + b] * x[a].dot(x[b]);
   if (force != nullptr) {
     for (int a = 0; a < local; ++a)
-      for (int b = 0; b < local; ++b) force[a] -= span.bending[a * local + b] * (q[b] - origin);
+      for (int b = 0; b < local; ++b) force[a] -= span.bending[a * local + b] * x[b];
   }
   return energy;
 }

@@ -25,6 +25,7 @@ double localInternalEnergy(const RodIntegrals& integrals, double axialStiffness,
   if (gradient != nullptr) gradient->assign(static_cast<size_t>(points), Vec3::Zero());
   if (hessian != nullptr) hessian->setZero(3 * points, 3 * points);
   Vec3 forces[kMaxDegree + 1];
+  Vec3* const spanForces = gradient != nullptr ? forces : nullptr;  // the energy alone: no forces
   Eigen::Matrix3d blocks[(kMaxDegree + 1) * (kMaxDegree + 1)];
   double energy = 0.0;
   for (int j = firstSpan; j <= lastSpan; ++j) {
@@ -32,9 +33,9 @@ double localInternalEnergy(const RodIntegrals& integrals, double axialStiffness,
     const int at = j - firstSpan;
     const Vec3* q = &window[static_cast<size_t>(at)];
     for (int a = 0; a < local; ++a) forces[a].setZero();
-    energy += stretchingSpan(span, q, axialStiffness, StiffnessMode::kClamped, forces,
+    energy += stretchingSpan(span, q, axialStiffness, StiffnessMode::kClamped, spanForces,
                              hessian != nullptr ? blocks : nullptr);
-    energy = bendingSpan(span, q, forces, energy);
+    energy = bendingSpan(span, q, spanForces, energy);
     if (hessian != nullptr) {
       for (int a = 0; a < local; ++a)
         for (int b = 0; b <= a; ++b) {
@@ -139,6 +140,7 @@ InsertionRelaxation relaxWindow(const KnotVector& knots, const RodIntegrals& int
   // log scale against the true energy; if even the Newton end stays above the target, the lowest point
   // found is taken and the path is rebuilt there.
   const Eigen::MatrixXd reducedMetric = Z.transpose() * lumpedMetric(lumped).asDiagonal() * Z;
+  Eigen::VectorXd modal, reduced, dq;  // energyAt's, kept across its calls
   constexpr int kMaxRebuilds = 8;
   for (; result.iterations < kMaxRebuilds && energy > target; ++result.iterations) {
     Eigen::VectorXd g(unknowns);
@@ -151,8 +153,9 @@ InsertionRelaxation relaxWindow(const KnotVector& knots, const RodIntegrals& int
     const double stiffest = frequencies.maxCoeff();
     if (!(stiffest > 0.0) || !load.allFinite()) break;
     auto energyAt = [&](double lambda) {
-      const Eigen::VectorXd modal = (lambda * load.array() / (1.0 + lambda * frequencies.array())).matrix();
-      const Eigen::VectorXd dq = Z * (modes.eigenvectors() * modal);
+      modal = (lambda * load.array() / (1.0 + lambda * frequencies.array())).matrix();
+      reduced.noalias() = modes.eigenvectors() * modal;
+      dq.noalias() = Z * reduced;
       for (int i = 0; i < count; ++i)
         trial[static_cast<size_t>(offset + i)] = window[static_cast<size_t>(offset + i)] - dq.segment<3>(3 * i);
       return localInternalEnergy(integrals, axialStiffness, trial, firstSpan, lastSpan, nullptr);

@@ -27,7 +27,9 @@ double stretchingSpan(const SpanView& span, const Vec3* q, double axialStiffness
     const double strain2 = c2 * (w3 / w1) - 1.0;  // gamma^2 - 1, without cancellation in W3 c2^2 - 2 W1 c2 + W0
     energy += 0.125 * axialStiffness * span.w0[g] * strain2 * strain2;
     const double t = w1 * strain2;
-    for (int a = 0; a < local; ++a) force[a] -= (halfEA * t * db[a]) * tangent;
+    if (force != nullptr) {
+      for (int a = 0; a < local; ++a) force[a] -= (halfEA * t * db[a]) * tangent;
+    }
     if (stiffness != nullptr) {
       const double isotropic = halfEA * (mode == StiffnessMode::kExact ? t : std::max(t, 0.0));
       Eigen::Matrix3d h = (axialStiffness * w3) * (tangent * tangent.transpose());
@@ -56,10 +58,9 @@ void materialStiffnessSpan(const SpanView& span, const Vec3* q, double axialStif
 
 double stretchingEnergy(const RodIntegrals& integrals, const PointList& q, double axialStiffness) {
   double energy = 0.0;
-  Vec3 scratch[kMaxDegree + 1];
   for (int j = 0; j < integrals.spanCount(); ++j) {
     energy += stretchingSpan(integrals.span(j), &q[static_cast<size_t>(j)], axialStiffness,
-                             StiffnessMode::kExact, scratch, nullptr);
+                             StiffnessMode::kExact, nullptr, nullptr);
   }
   return energy;
 }

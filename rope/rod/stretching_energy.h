@@ -24,8 +24,8 @@ namespace rope {
 
 enum class StiffnessMode { kExact, kClamped };
 
-// One span: q points at the span's d+1 control points. Adds the forces to force[0..d] and, if
-// stiffness is not null, writes the lower blocks stiffness[a * (d+1) + b], a >= b. Returns the energy (J).
+// One span: q points at the span's d+1 control points. Adds the forces to force[0..d] (if force is
+// not null) and, if stiffness is not null, writes the lower blocks stiffness[a * (d+1) + b], a >= b. Returns the energy (J).
 double stretchingSpan(const SpanView& span, const Vec3* q, double axialStiffness, StiffnessMode mode,
                       Vec3* force, Eigen::Matrix3d* stiffness);
 

@@ -72,6 +72,10 @@ struct RopeStepRecord {
   double maxInsertionRelaxation = 0.0;
   double unrelaxedInsertionEnergy = 0.0;
   int solvePasses = 0;           // rod solves in the substep (contact active set, contact/contact_response.h)
+  // After the active set, the kept trial was solved once more with the rod's stretching relinearised
+  // about it (Rod::trialNeedsRelinearisation: its one-pass step made more stretching energy than 1 %
+  // of the energy in play; rope_object.cpp, solveTrialWithContacts). Not counted in solvePasses.
+  bool contactRelinearised = false;
   // The active set had not settled when its last pass was kept (RopeObject::kMaxContactSolvePasses):
   // some contact of the kept trial pulls, sticks beyond mu f_n, or slides on a bound 5 % off its
   // normal force. A quality warning, not a failure (RopeWarnings::unsettledContactSteps counts it).

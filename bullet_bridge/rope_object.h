@@ -260,6 +260,7 @@ class RopeObject {
   void queueClampTangent(const Attachment& attachment, btRigidBody& body, int index, double h);
   // The rod's trial step with the attachments and the body contacts' active set (contact/body_contacts.h).
   StepReport solveTrialWithContacts(double h);
+  void queueTrialLoads();  // the user's loads, attachments' springs and contact samples, on a cleared rod
   // Whether the rope is attached to object within 4 radii of the capsule [s0, s1]: the rope's end sits
   // in the body's surface there, so those contacts are ignored.
   bool attachedNear(const btCollisionObject& object, double s0, double s1) const;

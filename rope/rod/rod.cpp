@@ -521,12 +521,14 @@ StepReport Rod::step(double h) {
   return report;
 }
 
-StepReport Rod::solveTrial(double h) {
+StepReport Rod::solveTrial(double h, bool relineariseInContact) {
   requirePositive("h", h);
   StepReport report;
   trialValid_ = false;
   bool solved = assembleAndSolve(h, report);
-  if (solved && needsRelinearisation()) {
+  trialRelinearisationTried_ = solved && needsRelinearisation(relineariseInContact);
+  relinearisingInContact_ = relineariseInContact;
+  if (trialRelinearisationTried_) {
     // One Newton correction: the same step with the stretching force linearised about the trial
     // (see linearisationExcess). It is kept if it relieves the stretch the first pass made; if not
     // (a Newton step from far off, or a failed solve), the first pass is solved again and kept.
@@ -771,20 +773,32 @@ double Rod::trialEnergy() const {
   return sum;
 }
 
-bool Rod::needsRelinearisation() const {
+bool Rod::needsRelinearisation(bool inContact) const {
+  // Not while a body touches the rope (contact samples queued, addSpringSample) unless the caller
+  // says the contact's active set is done (solveTrial's relineariseInContact): measured on a rope
+  // wound ten times round a frictional drum (reliability_extremes_test), relinearised passes fed the
+  // friction updates between passes and ran away (6.3 MJ within five substeps, from 278.5 J; a
+  // frictionless drum kept its energy either way).
+  if (!inContact) {
+    for (const Spring& spring : springs_)
+      if (!spring.interaction) return false;
+  }
+  return linearisationExcessive();
+}
+
+bool Rod::linearisationExcessive() const {
   // Corrected when the energy the linearisation made is more than 1 % of the energy in play: the
   // trial's kinetic energy, the start's stretching energy and m |g| L (and above 1e-12 EA L, strain
   // round-off). A rope of ordinary stiffness stays far below (the default 1 m rope released
   // horizontally: at most 1.2e-4 of m g L per step): its step is unchanged. A stiff thin rope (E = 1e13 Pa,
   // r = 0.5 mm) starting to swing at 1/60 s made 2.6e-4 J, 3 % of m g L, in its first step.
-  // Not while a body touches the rope (contact samples queued, addSpringSample): measured on a rope
-  // wound ten times round a spinning drum (reliability_extremes_test), corrected steps threw it at
-  // up to 392 m/s; the contact path keeps the one-pass step.
-  if (stiffnessBlocks_.empty()) return false;
-  for (const Spring& spring : springs_)
-    if (!spring.interaction) return false;
+  return linearisationExcessRatio() > 0.01;
+}
+
+double Rod::linearisationExcessRatio() const {
+  if (stiffnessBlocks_.empty()) return 0.0;
   const double excess = linearisationExcess();
-  if (!(excess > 1e-12 * settings_.axialStiffness() * restLength())) return false;
+  if (!(excess > 1e-12 * settings_.axialStiffness() * restLength())) return 0.0;
   double kinetic = 0.0;
   for (int j = 0; j < integrals_.spanCount(); ++j) {
     const SpanView span = integrals_.span(j);
@@ -794,7 +808,7 @@ bool Rod::needsRelinearisation() const {
       for (int b = 0; b < local; ++b) kinetic += 0.5 * span.mass[a * local + b] * v[a].dot(v[b]);
   }
   const double gravity = mass() * settings_.gravity.norm() * restLength();
-  return excess > 0.01 * (kinetic + stretchingEnergy_ + gravity);
+  return excess / (kinetic + stretchingEnergy_ + gravity);
 }
 
 bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about) {
@@ -858,10 +872,14 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
       // omega sees omega h of its rigid rotation as strain rate each step (a 2 rad/s spin lost 13 % of
       // its angular momentum in 1 s at 1/240 s with eta = 10 ms, against 4.5 % undamped); with the
       // end's, a stiff rope turning by theta keeps the stretch the turn made (docs/method.md eq. 20).
+      // A contact trial relinearised after the active set keeps the predicted midpoint: its first
+      // trial p holds the stretch the correction removes (a rope sliding round a cylinder moved 95.0 %
+      // of the Atwood travel with (q + p) / 2, 99.0 % with the predicted one; docs/method.md §8).
       Vec3 mid[kMaxDegree + 1];
       for (int a = 0; a < local; ++a) {
-        mid[a] = about == nullptr ? Vec3(q[a] + (0.5 * h) * v[a])
-                                  : Vec3(0.5 * (q[a] + (*about)[static_cast<size_t>(j + a)]));
+        mid[a] = about == nullptr || relinearisingInContact_
+                     ? Vec3(q[a] + (0.5 * h) * v[a])
+                     : Vec3(0.5 * (q[a] + (*about)[static_cast<size_t>(j + a)]));
       }
       materialStiffnessSpan(span, mid, axial, material);
     }

@@ -235,8 +235,19 @@ class Rod {
   // solves for the end-of-step state without changing the rod: positions, velocities and knots stay
   // as they are until commitTrial(). The queued loads stay queued (clearLoads() drops them and the
   // trial). Returns report.ok == false (with report.failure) on numerical failure.
-  StepReport solveTrial(double h);
+  // Where the trial holds much more stretching energy than the step's quadratic model (docs/method.md
+  // §8), the step is solved again with the stretching linearised about it; not while line-contact
+  // samples (addSpringSample) are queued, unless relineariseInContact: a bridge's contact active set
+  // solves the trial pass by pass, and asks for it once, after its last pass (bullet_bridge/
+  // rope_object.cpp, solveTrialWithContacts).
+  StepReport solveTrial(double h, bool relineariseInContact = false);
   bool hasTrial() const { return trialValid_; }
+  // Whether the trial (false without one, and false if its solveTrial relinearised already) holds
+  // enough stretching energy beyond the step's quadratic model that solveTrial(h, true) would solve
+  // it again about the trial, contact samples or not.
+  bool trialNeedsRelinearisation() const {
+    return trialValid_ && !trialRelinearisationTried_ && linearisationExcessive();
+  }
   // End-of-step control-point velocities and the velocity field at s of the trial (throws
   // InvalidArgument("trial", ...) without one).
   const PointList& trialVelocities() const;
@@ -375,7 +386,10 @@ class Rod {
   // The stretching energy the last pass's trial holds beyond the quadratic model it was solved with,
   // J (rod.cpp); and whether it is large enough to solve the step again about the trial.
   double linearisationExcess() const;
-  bool needsRelinearisation() const;
+  bool needsRelinearisation(bool inContact) const;
+  bool linearisationExcessive() const;  // needsRelinearisation's energy test alone
+  // linearisationExcess over the energy in play (see rod.cpp), 0 below strain round-off.
+  double linearisationExcessRatio() const;
   // Kinetic, stretching, bending and gravitational energy of the trial (newPoints_, newVelocities_), J.
   double trialEnergy() const;
   // The weight c of the internal forces in this step (method eq. 22a): 4/9 for a BDF2 step with
@@ -459,6 +473,8 @@ class Rod {
                                   // acted on it (adaptivity's insertions then relax)
   std::vector<double> markedInteractions_;
   bool trialValid_ = false;
+  bool trialRelinearisationTried_ = false;
+  bool relinearisingInContact_ = false;  // the last solveTrial's relineariseInContact  // the last solveTrial solved again about its first trial
   double trialStep_ = 0.0;
 };
 

@@ -20,9 +20,10 @@ constexpr double kPi = 3.14159265358979323846;
 // 1.1 exp(mu theta) Coulomb friction predicts an acceleration of about F_heavy / 11 / (total mass)
 // ~ 0.8 m/s^2, i.e. tenths of a metre per second within the window; measured 136-540 mm/s over the
 // cylinder, 17-99 mm/s over a taut rope). The scene runs on the rope's default damping (none).
-// m/s: sticking holds (measured creep: at most 7.4e-8 m/s, at theta = 2 pi, mu = 0.3; under 5e-9 m/s
-// for theta <= pi), far below the 1 mm/s a regularised friction law at frictionVelocity = 1 mm/s
-// creeps at. Bound about 3x the worst.
+// m/s: sticking holds (measured creep on 2026-12-02: at most 1.43e-7 m/s, at theta = 2 pi, mu = 0.3,
+// then 6.5e-8 at mu = 0.1; under 5e-9 m/s for theta <= pi), far below the 1 mm/s a regularised
+// friction law at frictionVelocity = 1 mm/s creeps at. Bound set at about 3x the worst when it was
+// 7.4e-8 m/s, and kept.
 constexpr double kCreepBound = 2.2e-7;
 constexpr double kSlipBound = 1.0e-2;   // m/s
 

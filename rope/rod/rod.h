@@ -473,8 +473,8 @@ class Rod {
                                   // acted on it (adaptivity's insertions then relax)
   std::vector<double> markedInteractions_;
   bool trialValid_ = false;
-  bool trialRelinearisationTried_ = false;
-  bool relinearisingInContact_ = false;  // the last solveTrial's relineariseInContact  // the last solveTrial solved again about its first trial
+  bool trialRelinearisationTried_ = false;  // the last solveTrial solved again about its first trial
+  bool relinearisingInContact_ = false;     // the last solveTrial's relineariseInContact
   double trialStep_ = 0.0;
 };
 

@@ -792,13 +792,9 @@ bool Rod::linearisationExcessive() const {
   // round-off). A rope of ordinary stiffness stays far below (the default 1 m rope released
   // horizontally: at most 1.2e-4 of m g L per step): its step is unchanged. A stiff thin rope (E = 1e13 Pa,
   // r = 0.5 mm) starting to swing at 1/60 s made 2.6e-4 J, 3 % of m g L, in its first step.
-  return linearisationExcessRatio() > 0.01;
-}
-
-double Rod::linearisationExcessRatio() const {
-  if (stiffnessBlocks_.empty()) return 0.0;
+  if (stiffnessBlocks_.empty()) return false;
   const double excess = linearisationExcess();
-  if (!(excess > 1e-12 * settings_.axialStiffness() * restLength())) return 0.0;
+  if (!(excess > 1e-12 * settings_.axialStiffness() * restLength())) return false;
   double kinetic = 0.0;
   for (int j = 0; j < integrals_.spanCount(); ++j) {
     const SpanView span = integrals_.span(j);
@@ -808,7 +804,7 @@ double Rod::linearisationExcessRatio() const {
       for (int b = 0; b < local; ++b) kinetic += 0.5 * span.mass[a * local + b] * v[a].dot(v[b]);
   }
   const double gravity = mass() * settings_.gravity.norm() * restLength();
-  return excess / (kinetic + stretchingEnergy_ + gravity);
+  return excess > 0.01 * (kinetic + stretchingEnergy_ + gravity);
 }
 
 bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about) {

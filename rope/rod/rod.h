@@ -388,8 +388,6 @@ class Rod {
   double linearisationExcess() const;
   bool needsRelinearisation(bool inContact) const;
   bool linearisationExcessive() const;  // needsRelinearisation's energy test alone
-  // linearisationExcess over the energy in play (see rod.cpp), 0 below strain round-off.
-  double linearisationExcessRatio() const;
   // Kinetic, stretching, bending and gravitational energy of the trial (newPoints_, newVelocities_), J.
   double trialEnergy() const;
   // The weight c of the internal forces in this step (method eq. 22a): 4/9 for a BDF2 step with

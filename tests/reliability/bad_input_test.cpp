@@ -6,7 +6,7 @@
 // rods, ropes with their attachments, the kinematic and tractrix ropes, curves, the draw list and
 // the Bullet world's object count).
 //
-// Categories (the table in kCases has one row per call; the name of each ctest says which):
+// Categories (the table built by allCases() has one row per call; the name of each ctest says which):
 //   rope/ settings      RodSettings: every numeric field NaN, infinite, zero or negative, counts and
 //                       degree out of range, a stretchingQuadrature or removalCriterion outside the
 //                       enum, removalRelativeError outside (0, 1), angles unordered,
@@ -368,6 +368,8 @@ std::vector<Case> allCases() {
                       [](TractrixSettings& s) { s.maxMergeShapeError = kInf; }),
       {"tractrix one-point shape", "initialShape.size()", "1",
        [](Fixture&) { TractrixRope(PointList{Vec3::Zero()}, TractrixSettings{}); }},
+      {"tractrix coincident shape", "initialShape[1]", "",
+       [](Fixture&) { TractrixRope(PointList{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0)}, TractrixSettings{}); }},
       {"tractrix target NaN", "target[1]", "nan", [](Fixture& f) { f.tractrix.moveLeadingEnd(Vec3(0, kNaN, 0)); }},
       {"tractrix target too far", "target[0]", "9.9999999999999997e+199", [](Fixture& f) { f.tractrix.moveLeadingEnd(Vec3(1e200, 0, 0)); }},
 
@@ -564,6 +566,7 @@ std::vector<Case> allCases() {
       cameraSetting("camera field of view 180", "camera.verticalFovDegrees", "180",
                     [](render::Camera& c) { c.verticalFovDegrees = 180; }),
       cameraSetting("camera far plane before near", "camera.farPlane", "0.01", [](render::Camera& c) { c.farPlane = 0.01; }),
+      {"box mesh zero size", "halfExtents.y", "0", [](Fixture&) { render::makeBox(Vec3(1, 0, 1)); }},
       {"box mesh negative size", "halfExtents.x", "-1", [](Fixture&) { render::makeBox(Vec3(-1, 1, 1)); }},
       {"sphere mesh NaN radius", "radius", "nan", [](Fixture&) { render::makeSphere(kNaN, 16); }},
       {"sphere mesh 2 segments", "segments", "2", [](Fixture&) { render::makeSphere(1.0, 2); }},

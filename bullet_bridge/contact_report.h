@@ -42,6 +42,10 @@ struct RopePairContactRecord {
   btVector3 force{0, 0, 0};           // force on A over the substep, N (B felt -force)
   bool sticking = false;              // tangential slip below the friction regularisation velocity
   bool active = false;                // false: a speculative contact that did not act, or was released
+  // A point contact (a crossing, self-contact): 0. A sample of a distributed contact between two ropes
+  // (one wrapped round or lying along the other; A is the sampled rope): the rest length of A it stands
+  // for, m, so that force / weight is the line load there, N/m.
+  double weight = 0.0;
 };
 
 // The load at one attachment of a rope after a substep (RopeObject::attachments()).

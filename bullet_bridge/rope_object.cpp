@@ -85,6 +85,8 @@ std::unique_ptr<RopeObject> RopeObject::cut(double requested) {
   if (winches_[0].targetLength >= 0.0) {
     winches_[0].targetLength = std::max(0.0, winches_[0].targetLength - piece->rod_.restLength());
   }
+  // Its parameter range changed: the stick state of its distributed rope-rope contacts is let go.
+  if (world_ != nullptr) world_->ropeRopeContacts_.forget(*this);
   cutPartners_.push_back({piece.get(), s, s});
   piece->cutPartners_.push_back({this, s, s});
   contacts_.clear();

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // What a user configures for a rope living in a Bullet world: the contact laws (rope-body: a penalty
-// line load with damping and Coulomb friction with sticking; rope-rope: penalty point contacts), the
+// line load with damping and Coulomb friction with sticking; rope-rope: penalty point contacts at
+// crossings and in self-contact, a distributed load where two ropes touch along a stretch), the
 // collision proxies and the broadphase filter. SI units.
 // The rope's material, gravity and discretisation stay in rope::RodSettings.
 
@@ -55,9 +56,10 @@ struct BulletRopeSettings {
   // until that spring would need more than friction * normal force, then slide with exactly that
   // force against the sliding direction.
   double friction = 1.0;
-  // Friction speed scale, m/s, > 0. Rope-body: a sliding sample slower than this sticks again at the
-  // next substep. Rope-rope: below it the friction force grows linearly with the sliding speed
-  // (viscous "sticking"), above it it is mu * f_n against the sliding direction.
+  // Friction speed scale, m/s, > 0. Rope-body and distributed rope-rope samples: a sliding sample
+  // slower than this sticks again at the next substep. Rope-rope point contacts: below it the friction
+  // force grows linearly with the sliding speed (viscous "sticking"), above it it is mu * f_n against
+  // the sliding direction.
   double frictionVelocity = 1.0e-3;
 
   // ---- gravity ----
@@ -85,10 +87,13 @@ struct BulletRopeSettings {
   // Velocity of the fluid, m/s, world frame, finite (wind, a current).
   btVector3 windVelocity{0, 0, 0};
 
-  // ---- rope-rope and self-contact: point contacts (contact/rope_rope_contact.h) ----
+  // ---- rope-rope and self-contact (contact/rope_rope_contact.h) ----
   // Penalty stiffness of one contact point, N/m, > 0; its damping along the normal, N s/m, >= 0; and
   // the speculative damper of a closing contact, N s/m, >= 0 (see lineSpeculativeDamping). Two ropes
-  // use the smaller value of each of the two ropes'.
+  // use the smaller value of each of the two ropes'. Where two ropes touch along a stretch (one wrapped
+  // round or lying along the other) the contact is distributed: each of these per contact spacing
+  // (the sum of the radii) of rope, sampled by contactQuadraturePoints per capsule, with friction that
+  // sticks like rope-body samples'.
   double contactStiffness = 1.0e4;
   double contactDamping = 50.0;
   double speculativeDamping = 1.0e3;

@@ -103,6 +103,7 @@ void RopeWorld::removeRope(RopeObject& rope) {
   if (rope.proxies().orphaned()) worldGone_ = true;
   rope.leaveWorld();
   rope.worldIndex_ = -1;
+  ropeRopeContacts_.forget(rope);  // its distributed contacts' stick state names it by address
   ropes_.erase(it);
   for (std::size_t i = 0; i < ropes_.size(); ++i) ropes_[i]->worldIndex_ = static_cast<int>(i);
   // The last report must not point at a rope that may be destroyed next.
@@ -419,6 +420,7 @@ void RopeWorld::solveRopeContacts(double h) {
   // pairs in a fixed order (the pair cache's order depends on pointer hashes).
   const auto ropeStart = std::chrono::steady_clock::now();
   if (capsulePairs_.empty()) {
+    ropeRopeContacts_.forgetAll();  // no rope near another: nothing sticks
     report_.ropeContactSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
     return;
   }
@@ -444,6 +446,7 @@ void RopeWorld::solveRopeContacts(double h) {
         if (ropeContacts < 0) {
           report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
           ++warnings_.ropeContactFailures;
+          ropeRopeContacts_.forgetAll();
         }
       },
       [&](const char* message) { failRopeContacts(message); });
@@ -473,6 +476,7 @@ void RopeWorld::failRopeContacts(const char* message) {
   // still has a trial drops it and keeps its state this substep.
   ++warnings_.ropeContactFailures;
   lastError_ = message;
+  ropeRopeContacts_.forgetAll();
   report_.ropeContacts.clear();
   report_.ropeContactFailure = "an exception was thrown in the rope-rope contact solve; the ropes kept their state";
   // Only the ropes the pairs name took part in the solve; the others' trials are their own.

@@ -11,13 +11,35 @@
 #include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/narrowphase/segment_segment_distance.h"
 #include "rope/common/error.h"
+#include "rope/spline/gauss_legendre.h"
 
 namespace rope::bullet {
 
 namespace {
 
 constexpr int kMaxSolvePasses = 6;  // small dense solves: contacts switch on and off, friction bounds settle
+// With distributed samples: their sliding bounds are re-estimated pass by pass to 1 % (a sample's
+// friction is exactly mu times its bound), and round a support each pass carries the bound's error on
+// by about mu theta; 6 passes at 5 % left a rope round a taut rope at mu = 1 held at 1.1 exp(mu theta)
+// (friction 5-10 % above mu f_n), 12 at 1 % let it slip (measured, capstan scene).
+constexpr int kMaxSolvePassesWithSamples = 12;
+constexpr double kSampleBoundTolerance = 0.01;
 constexpr double kFrictionBoundTolerance = 0.05;
+// Relative tolerance on mu f_n before a sticking sample is switched to sliding (round-off of a spring
+// exactly at the cone), as for rope-body samples.
+constexpr double kConeTolerance = 1e-6;
+// Which rope a distributed contact samples (addTouchingStretch): the conditioning of the two
+// projections must differ by this much, else the lower (rope, capsule) is sampled.
+constexpr double kSampledSideMargin = 0.25;
+// The touching stretch of a capsule: within the radii and this share of them of the other axis.
+constexpr double kTouchingBand = 0.05;
+// A region of touching stretches at least this many contact spacings (r_A + r_B) long is distributed
+// (a rope wrapped round or lying along another): it is sampled; shorter ones are crossings, point
+// contacts.
+constexpr double kDistributedLength = 1.0;
+// Rest arclength, m, by which the touching stretches of one region may be apart (they share capsule
+// ends, where their arclengths are equal up to rounding).
+constexpr double kArcJoin = 1e-9;
 
 btVector3 toBullet(const Vec3& v) {
   return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
@@ -51,6 +73,33 @@ double parameterAt(const CapsuleProxy& proxy, double t) {
   return std::min(proxy.s1, std::max(proxy.s0, proxy.s0 + t * (proxy.s1 - proxy.s0)));
 }
 
+double pointSegmentDistance(const btVector3& p, const btVector3& a, const btVector3& b) {
+  const btVector3 axis = b - a;
+  const btScalar length2 = axis.length2();
+  btScalar t = length2 > 0 ? (p - a).dot(axis) / length2 : btScalar(0);
+  t = std::min(btScalar(1), std::max(btScalar(0), t));
+  return static_cast<double>((a + axis * t - p).length());
+}
+
+// The parameters [lo, hi] of segment p0-p1 within `limit` (m) of segment q0-q1, given the closest
+// parameter x (within the limit). The distance to a segment is convex along a segment, so the set is
+// one interval; its free ends are bisected to 1/256 of the segment.
+void touchingInterval(const btVector3& p0, const btVector3& p1, const btVector3& q0, const btVector3& q1, double x,
+                      double limit, double& lo, double& hi) {
+  const auto inside = [&](double t) {
+    return pointSegmentDistance(p0 + (p1 - p0) * static_cast<btScalar>(t), q0, q1) <= limit;
+  };
+  const auto bisect = [&](double outside, double in) {
+    for (int i = 0; i < 8; ++i) {
+      const double middle = 0.5 * (outside + in);
+      (inside(middle) ? in : outside) = middle;
+    }
+    return 0.5 * (outside + in);
+  };
+  lo = inside(0.0) ? 0.0 : bisect(0.0, x);
+  hi = inside(1.0) ? 1.0 : bisect(1.0, x);
+}
+
 // The softer of two ropes' laws (each field the smaller value): a stiff rope against a soft one is
 // limited by the soft one. Friction is combined as Bullet combines it (friction_combination.h).
 ContactLaw pairLaw(const BulletRopeSettings& a, const BulletRopeSettings& b) {
@@ -72,6 +121,7 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
   restArc_.resize(ropes.size());
   ends_.resize(ropes.size());
   boxes_.resize(ropes.size());
+  bends_.resize(ropes.size());
   facts_.resize(ropes.size());
   for (size_t r = 0; r < ropes.size(); ++r) {
     const Rod& rod = ropes[r]->rod();
@@ -89,6 +139,26 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
     for (int i = 0; i <= proxies.size(); ++i) {
       const double s = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
       ends[static_cast<size_t>(i)] = {restArcAt(rod, restArc_[r], s), rod.velocity(s).norm()};
+    }
+    // Curvature vector of each capsule's stretch of curve (1/m, towards the centre of curvature), from
+    // the turn of the chords on either side: what decides which rope a distributed contact samples.
+    std::vector<Vec3>& bends = bends_[r];
+    bends.assign(static_cast<size_t>(proxies.size()), Vec3::Zero());
+    for (int i = 0; i < proxies.size(); ++i) {
+      const int before = std::max(0, i - 1), after = std::min(proxies.size() - 1, i + 1);
+      if (before == after) continue;
+      const Capsule c0 = proxies.capsule(before), c1 = proxies.capsule(after);
+      const Vec3 d0(c0.b.x() - c0.a.x(), c0.b.y() - c0.a.y(), c0.b.z() - c0.a.z());
+      const Vec3 d1(c1.b.x() - c1.a.x(), c1.b.y() - c1.a.y(), c1.b.z() - c1.a.z());
+      const double l0 = d0.norm(), l1 = d1.norm();
+      if (!(l0 > 0.0 && l1 > 0.0)) continue;
+      // The chords' midpoints are (l0 + l1) / 2 apart along the curve, plus the capsule between them.
+      double between = 0.5 * (l0 + l1);
+      if (after - before == 2) {
+        const Capsule c = proxies.capsule(i);
+        between += static_cast<double>((c.b - c.a).length());
+      }
+      bends[static_cast<size_t>(i)] = (d1 / l1 - d0 / l0) / between;
     }
     boxes.resize(static_cast<size_t>(proxies.size()));
     for (int i = 0; i < proxies.size(); ++i) {
@@ -148,9 +218,296 @@ void RopeRopeContacts::dropDistantPairs(std::vector<RopeCapsulePair>& pairs) con
               pairs.end());
 }
 
+void RopeRopeContacts::addTouchingStretch(const std::vector<RopeObject*>& ropes, const RopeCapsulePair& pair,
+                                          double closestS, double closestT, double closestDistance, const Vec3& normal,
+                                          double centres, int candidate) {
+  const Capsule capsuleA = ropes[static_cast<size_t>(pair.ropeA)]->proxies().capsule(pair.capsuleA);
+  const Capsule capsuleB = ropes[static_cast<size_t>(pair.ropeB)]->proxies().capsule(pair.capsuleB);
+  const RopeFacts& a = facts_[static_cast<size_t>(pair.ropeA)];
+  const RopeFacts& b = facts_[static_cast<size_t>(pair.ropeB)];
+  const double radii = a.radius + b.radius;
+  // Which rope is sampled: a point of one rope has a well-defined closest point on the other unless
+  // the other curves round it (a rope wrapped round a taut one: every point of the wrap is equally
+  // near the taut rope's axis point). With D the distance of the axes and kappa the curvature towards
+  // the other rope, projecting onto rope X is conditioned by c_X = 1 - D kappa_X (1: straight, 0: X
+  // curves round the point at exactly D). The sampled rope is the one that curves round the other;
+  // within kSampledSideMargin of each other (two straight ropes) the lower (rope, capsule).
+  const Vec3& bendA = bends_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)];
+  const Vec3& bendB = bends_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)];
+  const double conditionA = 1.0 + centres * bendA.dot(normal);  // A curves towards B: bendA along -normal
+  const double conditionB = 1.0 - centres * bendB.dot(normal);
+  const bool sampleB = conditionA > conditionB + kSampledSideMargin;
+  // The touching stretch of the sampled capsule's axis: within the radii (plus a sliver of them) of
+  // the other axis. Not the gap the step can close: ropes that are still approaching meet as point
+  // contacts (a fast rope crossing another would otherwise be "distributed" over a stretch as long as
+  // its step, and could pass between samples spread along it).
+  const double limit = radii * (1.0 + kTouchingBand);
+  if (!(closestDistance <= limit)) return;
+  Stretch stretch;
+  stretch.candidate = candidate;
+  stretch.reach = reach(pair);
+  if (sampleB) {
+    stretch.sampledRope = pair.ropeB;
+    stretch.sampledCapsule = pair.capsuleB;
+    stretch.otherRope = pair.ropeA;
+    stretch.otherCapsule = pair.capsuleA;
+    touchingInterval(capsuleB.a, capsuleB.b, capsuleA.a, capsuleA.b, closestT, limit, stretch.lo, stretch.hi);
+  } else {
+    stretch.sampledRope = pair.ropeA;
+    stretch.sampledCapsule = pair.capsuleA;
+    stretch.otherRope = pair.ropeB;
+    stretch.otherCapsule = pair.capsuleB;
+    touchingInterval(capsuleA.a, capsuleA.b, capsuleB.a, capsuleB.b, closestS, limit, stretch.lo, stretch.hi);
+  }
+  const CapsuleEnd* ends = &ends_[static_cast<size_t>(stretch.sampledRope)][static_cast<size_t>(stretch.sampledCapsule)];
+  stretch.arcLo = ends[0].arc + stretch.lo * (ends[1].arc - ends[0].arc);
+  stretch.arcHi = ends[0].arc + stretch.hi * (ends[1].arc - ends[0].arc);
+  stretches_.push_back(stretch);
+}
+
+void RopeRopeContacts::sampleDistributedContacts(const std::vector<RopeObject*>& ropes) {
+  samples_.clear();
+  if (stretches_.empty()) return;
+  // Regions: touching stretches of one sampled rope against one other rope that meet along the sampled
+  // rope's rest curve.
+  std::sort(stretches_.begin(), stretches_.end(), [](const Stretch& x, const Stretch& y) {
+    return std::tie(x.sampledRope, x.otherRope, x.arcLo, x.sampledCapsule, x.otherCapsule) <
+           std::tie(y.sampledRope, y.otherRope, y.arcLo, y.sampledCapsule, y.otherCapsule);
+  });
+  size_t first = 0;
+  while (first < stretches_.size()) {
+    size_t last = first + 1;
+    double arcHi = stretches_[first].arcHi;
+    while (last < stretches_.size() && stretches_[last].sampledRope == stretches_[first].sampledRope &&
+           stretches_[last].otherRope == stretches_[first].otherRope && stretches_[last].arcLo <= arcHi + kArcJoin) {
+      arcHi = std::max(arcHi, stretches_[last].arcHi);
+      ++last;
+    }
+    const double radii = facts_[static_cast<size_t>(stretches_[first].sampledRope)].radius +
+                         facts_[static_cast<size_t>(stretches_[first].otherRope)].radius;
+    // Shorter than the contact spacing: a crossing, concentrated at one point (the point contacts).
+    if (arcHi - stretches_[first].arcLo >= kDistributedLength * radii) {
+      for (size_t k = first; k < last; ++k) candidates_[static_cast<size_t>(stretches_[k].candidate)].suppressed = true;
+      sampleRegion(ropes, first, last);
+    }
+    first = last;
+  }
+}
+
+void RopeRopeContacts::sampleRegion(const std::vector<RopeObject*>& ropes, size_t first, size_t last) {
+  // Per sampled capsule, per run of consecutive capsules of the other rope (one strand it lies on):
+  // Gauss-Legendre nodes on the union of their touching stretches.
+  std::sort(stretches_.begin() + static_cast<std::ptrdiff_t>(first), stretches_.begin() + static_cast<std::ptrdiff_t>(last),
+            [](const Stretch& x, const Stretch& y) {
+              return std::tie(x.sampledCapsule, x.otherCapsule) < std::tie(y.sampledCapsule, y.otherCapsule);
+            });
+  size_t begin = first;
+  while (begin < last) {
+    size_t end = begin + 1;
+    while (end < last && stretches_[end].sampledCapsule == stretches_[begin].sampledCapsule &&
+           stretches_[end].otherCapsule <= stretches_[end - 1].otherCapsule + 1) {
+      ++end;
+    }
+    sampleRun(ropes, begin, end);
+    begin = end;
+  }
+}
+
+void RopeRopeContacts::sampleRun(const std::vector<RopeObject*>& ropes, size_t first, size_t last) {
+  const Stretch& head = stretches_[first];
+  const RopeObject& sampled = *ropes[static_cast<size_t>(head.sampledRope)];
+  const RopeObject& other = *ropes[static_cast<size_t>(head.otherRope)];
+  const Rod& rodS = sampled.rod();
+  const Rod& rodO = other.rod();
+  const bool self = head.sampledRope == head.otherRope;
+  const RopeFacts& factsS = facts_[static_cast<size_t>(head.sampledRope)];
+  const RopeFacts& factsO = facts_[static_cast<size_t>(head.otherRope)];
+  const double radii = factsS.radius + factsO.radius;
+  double lo = head.lo, hi = head.hi, reach = head.reach;
+  for (size_t k = first + 1; k < last; ++k) {
+    lo = std::min(lo, stretches_[k].lo);
+    hi = std::max(hi, stretches_[k].hi);
+    reach = std::max(reach, stretches_[k].reach);
+  }
+  const CapsuleProxy& proxy = sampled.proxies().proxy(head.sampledCapsule);
+  const double s0 = parameterAt(proxy, lo), s1 = parameterAt(proxy, hi);
+  if (!(s1 > s0)) return;
+  const RopeObject::CutPartner* cut = nullptr;
+  if (!self) {
+    for (const RopeObject::CutPartner& partner : sampled.cutPartners()) {
+      if (partner.rope == &other) cut = &partner;
+    }
+  }
+  const GaussRule rule = gaussLegendre(sampled.settings().contactQuadraturePoints);
+  for (int q = 0; q < rule.count; ++q) {
+    const double s = 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * rule.nodes[q];
+    const Vec3 point = rodS.position(s);
+    const btVector3 p = toBullet(point);
+    // The nearest axis point of the run's capsules, then one Newton step on the other curve.
+    int nearest = head.otherCapsule;
+    double nearestT = 0.0, nearestDistance = 1e300;
+    for (size_t k = first; k < last; ++k) {
+      const Capsule c = other.proxies().capsule(stretches_[k].otherCapsule);
+      const btVector3 axis = c.b - c.a;
+      const btScalar length2 = axis.length2();
+      btScalar t = length2 > 0 ? (p - c.a).dot(axis) / length2 : btScalar(0);
+      t = std::min(btScalar(1), std::max(btScalar(0), t));
+      const double distance = static_cast<double>((c.a + axis * t - p).length());
+      if (distance < nearestDistance) {
+        nearestDistance = distance;
+        nearest = stretches_[k].otherCapsule;
+        nearestT = static_cast<double>(t);
+      }
+    }
+    const CapsuleProxy& otherProxy = other.proxies().proxy(nearest);
+    double sO = parameterAt(otherProxy, nearestT);
+    {
+      const Capsule c = other.proxies().capsule(nearest);
+      const double width = otherProxy.s1 - otherProxy.s0;
+      const double speed = width > 0.0 ? static_cast<double>((c.b - c.a).length()) / width : 0.0;
+      if (speed > 0.0) {
+        const Vec3 q0 = rodO.position(sO);
+        const double step = rodO.tangent(sO).dot(point - q0) / speed;
+        sO = std::clamp(sO + std::clamp(step, -width, width), rodO.beginParameter(), rodO.endParameter());
+      }
+    }
+    const double arcS = restArcAt(rodS, restArc_[static_cast<size_t>(head.sampledRope)], s);
+    const double arcO = restArcAt(rodO, restArc_[static_cast<size_t>(head.otherRope)], sO);
+    if (self && std::abs(arcS - arcO) < factsS.exclusion) continue;
+    if (cut != nullptr) {
+      const double cutS = restArcAt(rodS, restArc_[static_cast<size_t>(head.sampledRope)], cut->ownEnd);
+      const double cutO = restArcAt(rodO, restArc_[static_cast<size_t>(head.otherRope)], cut->partnerEnd);
+      if (std::abs(arcS - cutS) + std::abs(arcO - cutO) < sampled.settings().effectiveSelfContactExclusion(rodS.settings().radius))
+        continue;
+    }
+    Vec3 normal = point - rodO.position(sO);
+    double centres = normal.norm();
+    if (!(centres > 1e-12 * radii)) continue;  // centre lines meet: the point contacts decide
+    normal /= centres;
+    if (!(centres - radii < reach)) continue;
+    Candidate candidate;
+    candidate.record = -1;
+    candidate.ropeA = head.sampledRope;
+    candidate.ropeB = head.otherRope;
+    candidate.sA = s;
+    candidate.sB = sO;
+    candidate.arcA = arcS;
+    candidate.arcB = arcO;
+    candidate.spacing = radii;
+    candidate.distance = centres - radii;
+    candidate.normal = normal;
+    candidate.frictionNormalForce = -1.0;
+    candidate.active = false;
+    candidate.relativeVelocity = Vec3::Zero();
+    candidate.coupled = false;
+    candidate.sample = true;
+    candidate.weight = 0.5 * (s1 - s0) * rule.weights[q] * rodS.restMetric(s);
+    samples_.push_back(candidate);
+  }
+}
+
+void RopeRopeContacts::startSample(const RopeObject& sampled, const RopeObject& other, Candidate& candidate) const {
+  // The sample's share of the line law: the point law's stiffness, damping and speculative damping
+  // per contact spacing (r_A + r_B) of rope, times the rest length the sample stands for.
+  const double share = candidate.weight / candidate.spacing;
+  candidate.law.stiffness *= share;
+  candidate.law.damping *= share;
+  candidate.law.speculativeDamping *= share;
+  SampleFriction& friction = candidate.friction;
+  friction = SampleFriction{};
+  const Vec3& n = candidate.normal;
+  const Vec3 slip = candidate.relativeVelocity - n * n.dot(candidate.relativeVelocity);
+  const double speed = slip.norm();
+  const double v = candidate.law.frictionVelocity;
+  Vec3 stretch = Vec3::Zero();
+  bool wasSliding = false;
+  const double reach = candidate.spacing / std::max(sampled.rod().restMetric(candidate.sA), 1e-12);  // parameter units
+  const bool remembered = memory_.find(sampled, other, candidate.sA, reach, stretch, wasSliding);
+  if (speed >= v && (!remembered || wasSliding)) {
+    friction.sliding = true;
+    friction.direction = slip / speed;
+    friction.speed = speed;
+    friction.normalForce = std::max(0.0, -candidate.law.stiffness * candidate.distance);
+  } else {
+    friction.displacement = stretch - n * n.dot(stretch);  // in today's tangent plane
+  }
+}
+
+CouplingLaw RopeRopeContacts::lawOf(const Candidate& candidate, double h) const {
+  CouplingLaw law;
+  if (!candidate.active) return law;
+  // The contact law in the relative velocity (the "body" at rest in B's frame): f0, K, D. Samples
+  // carry rope-body samples' law (sticking spring, exact sliding force), point contacts the
+  // regularised one.
+  const ContactSpring spring =
+      candidate.sample
+          ? sampleSpring(candidate.law, candidate.distance, candidate.normal, candidate.relativeVelocity, Vec3::Zero(), h,
+                         candidate.friction)
+          : contactSpring(candidate.law, candidate.distance, candidate.normal, candidate.relativeVelocity, Vec3::Zero(),
+                          h, candidate.frictionNormalForce);
+  law.impulse = h * (spring.force - h * (spring.stiffness * candidate.relativeVelocity));
+  law.admittance = h * h * spring.stiffness + h * spring.damping;
+  return law;
+}
+
+bool RopeRopeContacts::updateSampleFriction(Candidate& candidate, int k, double normalForce, double h) {
+  if (!(candidate.law.friction > 0.0)) return false;
+  SampleFriction& friction = candidate.friction;
+  const Vec3 force = impulses_[static_cast<size_t>(k)] / h;
+  const Vec3& n = candidate.normal;
+  if (!friction.sliding) {
+    const Vec3 tangentForce = force - n * n.dot(force);
+    const double magnitude = tangentForce.norm();
+    if (magnitude <= candidate.law.friction * normalForce * (1.0 + kConeTolerance)) return false;
+    // The spring would need more than mu f_n: the sample slides, along the way the force pushes it.
+    const Vec3 w = candidate.relativeVelocity + solver_.solvedRelativeChange(k);
+    friction.sliding = true;
+    friction.direction = -tangentForce / magnitude;
+    friction.speed = std::max((w - n * n.dot(w)).norm(), candidate.law.frictionVelocity);
+    friction.normalForce = normalForce;
+    return true;
+  }
+  if (std::abs(normalForce - friction.normalForce) <= kSampleBoundTolerance * std::max(normalForce, friction.normalForce))
+    return false;
+  friction.normalForce = normalForce;
+  return true;
+}
+
+void RopeRopeContacts::rememberSampleFriction(const std::vector<RopeObject*>& ropes, double h) {
+  for (size_t k = 0; k < couplings_.size(); ++k) {
+    const Candidate& candidate = candidates_[static_cast<size_t>(coupled_[k])];
+    if (!candidate.sample || !candidate.active || !(candidate.law.friction > 0.0) || !(candidate.law.stiffness > 0.0))
+      continue;
+    const Vec3 force = impulses_[k] / h;
+    const Vec3& n = candidate.normal;
+    const double normalForce = std::max(0.0, n.dot(force));
+    const double limit = candidate.law.friction * normalForce;
+    const Vec3 w = candidate.relativeVelocity + solver_.solvedRelativeChange(static_cast<int>(k));
+    const Vec3 slip = w - n * n.dot(w);
+    Vec3 stretch;
+    bool sliding = false;
+    if (!candidate.friction.sliding) {
+      // The spring's stretch at the end of the step, kept within the friction cone.
+      stretch = candidate.friction.displacement + h * slip;
+    } else {
+      // One that puts the spring at the friction force the sample ends the step with, so that it
+      // keeps carrying its load if it sticks again.
+      const Vec3 tangentForce = force - n * n.dot(force);
+      stretch = -tangentForce / candidate.law.stiffness;
+      sliding = slip.norm() >= candidate.law.frictionVelocity && slip.dot(candidate.friction.direction) > 0.0;
+    }
+    const double springForce = candidate.law.stiffness * stretch.norm();
+    if (springForce > limit && springForce > 0.0) stretch *= limit / springForce;
+    memory_.add(*ropes[static_cast<size_t>(candidate.ropeA)], *ropes[static_cast<size_t>(candidate.ropeB)], candidate.sA,
+                stretch, sliding);
+  }
+  memory_.commit();
+}
+
 int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs,
                             double h, std::vector<RopePairContactRecord>& records) {
   candidates_.clear();
+  stretches_.clear();
 
   // ---- narrowphase, at the ropes' state before the step ----
   for (const RopeCapsulePair& pair : pairs) {
@@ -230,7 +587,12 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     candidate.relativeVelocity = Vec3::Zero();
     candidate.coupled = false;
     candidates_.push_back(candidate);
+    if (!self) {
+      addTouchingStretch(ropes, pair, closest.s, closest.t, closest.distance, normal, centres,
+                         static_cast<int>(candidates_.size()) - 1);
+    }
   }
+  sampleDistributedContacts(ropes);
 
   // One contact per place: neighbouring capsule pairs find the same crossing (or the same stretch of a
   // side-by-side contact) several times. Deepest first; a candidate within one contact spacing (the sum
@@ -242,6 +604,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   sortKeys_.clear();
   for (size_t c = 0; c < candidates_.size(); ++c) {
     const Candidate& k = candidates_[c];
+    if (k.suppressed) continue;  // inside a distributed contact, which its samples carry
     sortKeys_.push_back({k.distance, k.ropeA, k.sA, k.ropeB, k.sB, static_cast<int>(c)});
   }
   std::sort(sortKeys_.begin(), sortKeys_.end(), [](const SortKey& a, const SortKey& b) {
@@ -283,6 +646,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     ++kept;
   }
   candidates_.resize(kept);
+  candidates_.insert(candidates_.end(), samples_.begin(), samples_.end());
   for (Candidate& candidate : candidates_) {
     const RopeObject& ropeA = *ropes[static_cast<size_t>(candidate.ropeA)];
     const RopeObject& ropeB = *ropes[static_cast<size_t>(candidate.ropeB)];
@@ -296,6 +660,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     }
     candidate.relativeVelocity = ropeA.rod().velocity(candidate.sA) - ropeB.rod().velocity(candidate.sB);
     candidate.coupled = ropeA.rod().hasTrial() && ropeB.rod().hasTrial();
+    if (candidate.sample) startSample(ropeA, ropeB, candidate);
   }
   for (Candidate& candidate : candidates_) {
     const RopeObject& ropeA = *ropes[static_cast<size_t>(candidate.ropeA)];
@@ -309,6 +674,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     record.pointB = toBullet(ropeB.rod().position(candidate.sB));
     record.normal = toBullet(candidate.normal);
     record.depth = -candidate.distance;
+    record.weight = candidate.sample ? candidate.weight : 0.0;
     candidate.record = static_cast<int>(records.size());
     records.push_back(record);
   }
@@ -333,30 +699,23 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     if (!candidate.coupled) continue;
     candidate.active = contactActive(candidate.distance, candidate.normal, candidate.relativeVelocity, Vec3::Zero(), h);
     couplings_.push_back({rodIndex[static_cast<size_t>(candidate.ropeA)], candidate.sA,
-                          rodIndex[static_cast<size_t>(candidate.ropeB)], candidate.sB});
+                          rodIndex[static_cast<size_t>(candidate.ropeB)], candidate.sB, !candidate.sample});
     coupled_.push_back(static_cast<int>(c));
   }
-  if (couplings_.empty()) return 0;
+  if (couplings_.empty()) {
+    memory_.commit();  // nothing acts: no sample carries a stick state into the next substep
+    return 0;
+  }
 
   solver_.prepare(rods_, couplings_);
-  const auto lawOf = [h](const Candidate& candidate) {
-    CouplingLaw law;
-    if (!candidate.active) return law;
-    // The contact law in the relative velocity (the "body" at rest in B's frame): f0, K, D.
-    const ContactSpring spring = contactSpring(candidate.law, candidate.distance, candidate.normal,
-                                               candidate.relativeVelocity, Vec3::Zero(), h,
-                                               candidate.frictionNormalForce);
-    law.impulse = h * (spring.force - h * (spring.stiffness * candidate.relativeVelocity));
-    law.admittance = h * h * spring.stiffness + h * spring.damping;
-    return law;
-  };
   laws_.resize(couplings_.size());
-  for (size_t k = 0; k < couplings_.size(); ++k) laws_[k] = lawOf(candidates_[static_cast<size_t>(coupled_[k])]);
+  for (size_t k = 0; k < couplings_.size(); ++k) laws_[k] = lawOf(candidates_[static_cast<size_t>(coupled_[k])], h);
 
   bool solved = false;
-  for (int pass = 1; pass <= kMaxSolvePasses; ++pass) {
+  const int maxPasses = samples_.empty() ? kMaxSolvePasses : kMaxSolvePassesWithSamples;
+  for (int pass = 1; pass <= maxPasses; ++pass) {
     solved = solver_.solveImpulses(laws_, impulses_);
-    if (!solved || pass == kMaxSolvePasses) break;
+    if (!solved || pass == maxPasses) break;
     bool changed = false;
     for (size_t k = 0; k < couplings_.size(); ++k) {
       Candidate& candidate = candidates_[static_cast<size_t>(coupled_[k])];
@@ -369,6 +728,8 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
         const double normalForce = candidate.normal.dot(impulses_[k]) / h;
         if (normalForce < 0.0) {
           candidate.active = false;  // pulling: the tubes separate during the step
+        } else if (candidate.sample) {
+          if (!updateSampleFriction(candidate, static_cast<int>(k), normalForce, h)) continue;
         } else if (candidate.law.friction > 0.0) {
           const double estimate = candidate.frictionNormalForce >= 0.0
                                       ? candidate.frictionNormalForce
@@ -379,7 +740,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
           continue;
         }
       }
-      laws_[k] = lawOf(candidate);
+      laws_[k] = lawOf(candidate, h);
       changed = true;
     }
     if (!changed) break;
@@ -390,6 +751,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     return -1;
   }
   solver_.apply(impulses_);
+  rememberSampleFriction(ropes, h);
 
   int active = 0;
   for (size_t k = 0; k < couplings_.size(); ++k) {
@@ -398,6 +760,11 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     RopePairContactRecord& record = records[static_cast<size_t>(candidate.record)];
     record.active = true;
     record.force = toBullet(impulses_[k] / h);
+    if (candidate.sample) {
+      record.sticking = candidate.law.friction > 0.0 && !candidate.friction.sliding;
+      ++active;
+      continue;
+    }
     const Vec3 slip = candidate.relativeVelocity + solver_.solvedRelativeChange(static_cast<int>(k));
     record.sticking = (slip - candidate.normal * candidate.normal.dot(slip)).norm() < candidate.law.frictionVelocity;
     ++active;

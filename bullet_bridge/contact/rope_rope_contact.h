@@ -15,16 +15,28 @@
 // predicts to end the step overlapping are switched on, and friction bounds are re-estimated from the
 // end-of-step normal force, at most 6 small solves per substep (the ropes' factors are reused).
 //
+// Distributed contact (docs/method.md §12, eqs. 37a-b): where two *different* ropes touch along a
+// stretch at least one contact spacing (r_A + r_B) long (a rope wrapped round a taut one, or lying
+// along another), the point contacts there are replaced by Gauss-Legendre samples along the touching
+// stretch of the rope that curves round the other, each projected onto the other curve, with the
+// point law per contact spacing times the rest length it stands for, and rope-body samples' friction:
+// a sticking spring whose stretch is carried along the sampled rope (rope_stick_memory.h), or
+// exactly mu f_n when sliding. Point contacts with regularised friction could not hold a rope round a
+// taut rope (crept at 7-103 mm/s at 0.9 of the capstan limit: 3-4 contacts that jumped along the wrap
+// from substep to substep); the samples hold it to 1e-7 m/s. Crossings (shorter stretches) and
+// self-contact stay point contacts. Samples are not interaction points (no knot each).
+//
 // Excluded: two points of one rope closer than BulletRopeSettings::selfContactExclusion along the rest
 // curve (neighbouring capsules always overlap; that is the rope, not a contact), the same across the
-// cut of two pieces cut from one rope (RopeObject::cut), and ropes with selfContact off. The contact points become interaction knots ([A] §4), so the rope refines where
-// it presses on itself.
+// cut of two pieces cut from one rope (RopeObject::cut), and ropes with selfContact off. Point
+// contacts become interaction knots ([A] §4), so the rope refines where it presses on itself.
 // Not API: installed only because rope_world.h holds the solver; it may change in any release.
 
 #include <vector>
 
 #include "bullet_bridge/contact_report.h"
 #include "bullet_bridge/contact/contact_response.h"
+#include "bullet_bridge/contact/rope_stick_memory.h"
 #include "bullet_bridge/friction_combination.h"
 #include "rope/rod/coupled_solve.h"
 
@@ -62,6 +74,11 @@ class RopeRopeContacts {
             std::vector<RopePairContactRecord>& records);
   // Replaces the product of the two ropes' coefficients (friction_combination.h); empty: the product.
   void setFrictionCombiner(RopeFrictionCombiner combiner) { combiner_ = std::move(combiner); }
+  // Lets go of the stick state of one rope's distributed contacts, or of all: a rope that leaves the
+  // world or is cut, a solve that failed. The state names ropes by address, so a removed rope must be
+  // forgotten before it can be destroyed.
+  void forget(const RopeObject& rope) { memory_.forget(rope); }
+  void forgetAll() { memory_.clear(); }
 
  private:
   struct Candidate {
@@ -77,7 +94,24 @@ class RopeRopeContacts {
     Vec3 relativeVelocity;  // w = C'_A(sA) - C'_B(sB) before the step
     double frictionNormalForce;  // N, < 0: the start-of-step estimate
     bool active;
+    bool suppressed = false;  // a point contact inside a distributed contact (its samples carry it)
+    bool sample = false;      // a quadrature sample of a distributed contact (A is the sampled rope)
+    double weight = 0.0;      // sample: m of rest length of A it stands for
+    SampleFriction friction;  // sample: sticking (its spring's stretch) or sliding
   };
+  // Where the axis of one capsule (the sampled one) touches another's (see the header comment).
+  struct Stretch {
+    int sampledRope = 0, sampledCapsule = 0;
+    int otherRope = 0, otherCapsule = 0;
+    double lo = 0.0, hi = 0.0;        // along the sampled capsule's axis, [0, 1]
+    double arcLo = 0.0, arcHi = 0.0;  // the same as rest arclength of the sampled rope, m
+    double reach = 0.0;               // m: the pair's reach
+    int candidate = -1;               // the pair's point contact
+  };
+  std::vector<Stretch> stretches_;
+  std::vector<Candidate> samples_;
+  RopeStickMemory memory_;
+  std::vector<std::vector<Vec3>> bends_;  // per rope: curvature vector of each capsule, 1/m
   std::vector<Candidate> candidates_;
   struct SortKey {
     double distance;
@@ -120,6 +154,15 @@ class RopeRopeContacts {
   // m: the gap the pair's step may close (speculative margin and both capsules' speeds).
   double reach(const RopeCapsulePair& pair) const;
   bool mayTouch(const RopeCapsulePair& pair) const;
+  void addTouchingStretch(const std::vector<RopeObject*>& ropes, const RopeCapsulePair& pair, double closestS,
+                          double closestT, double closestDistance, const Vec3& normal, double centres, int candidate);
+  void sampleDistributedContacts(const std::vector<RopeObject*>& ropes);
+  void sampleRegion(const std::vector<RopeObject*>& ropes, size_t first, size_t last);
+  void sampleRun(const std::vector<RopeObject*>& ropes, size_t first, size_t last);
+  void startSample(const RopeObject& sampled, const RopeObject& other, Candidate& candidate) const;
+  CouplingLaw lawOf(const Candidate& candidate, double h) const;
+  bool updateSampleFriction(Candidate& candidate, int k, double normalForce, double h);
+  void rememberSampleFriction(const std::vector<RopeObject*>& ropes, double h);
   CoupledSolve solver_;
   RopeFrictionCombiner combiner_;
 };

@@ -91,6 +91,10 @@ class CapstanScene : public WorldScene {
   double heavySpeed() const;
   // Same for the light load along its own pull direction (it moves backwards, < 0, when the rope slips).
   double lightTravel() const;
+  // How far the rope has slid over its support towards the heavy side since the start, m: half the
+  // difference of the two loads' travels, so that a support that itself moves (the taut rope sags and
+  // swings under the load, carrying both loads with it) does not count as slip.
+  double ropeSlip() const { return 0.5 * (heavyTravel() - lightTravel()); }
 
  private:
   void applyLoads(double t);  // the loads' ramp at time t, s

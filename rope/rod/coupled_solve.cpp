@@ -275,6 +275,7 @@ void CoupledSolve::apply(const std::vector<Vec3>& impulses) {
     for (size_t k = 0; k < couplings_.size(); ++k) {
       if (impulses[k].isZero(0.0)) continue;  // a coupling that did not act needs no knot
       const PointCoupling& c = couplings_[k];
+      if (!c.interaction) continue;
       if (c.rodA == static_cast<int>(r)) rod.markInteraction(c.sA);
       if (c.rodB == static_cast<int>(r)) rod.markInteraction(c.sB);
     }

@@ -38,6 +38,9 @@ struct PointCoupling {
   double sA = 0.0;   // curve parameter on rod A
   int rodB = 0;      // may equal rodA (self-contact); then sB != sA
   double sB = 0.0;
+  // Whether apply() makes both points interaction points (a knot there, [A] §4) when the coupling
+  // acts. False for a quadrature sample of a distributed contact, which must not refine the rope.
+  bool interaction = true;
 };
 
 struct CouplingLaw {

@@ -6,7 +6,8 @@
 //     (btSoftBodyHelpers::CreateRope, 16 segments, 4 iterations: demos/scenes/softbody_ropes_scene.h)
 //     on the same box, in the same program, timed after 0.5 s of settling;
 //   * the knot scene (demos/scenes/knot_scene.h) once the knot is pulled tight (after 3 s), and the
-//     2 m pile (demos/scenes/pile_scene.h) once it has landed (after 1 s).
+//     2 m pile (demos/scenes/pile_scene.h) once it has landed (after 1 s);
+//   * a rope held half a turn round a 5 cm cylinder and round a taut rope (demos/scenes/capstan_scene.h).
 // One iteration is one step; run with --benchmark_repetitions=5 and read the median aggregates.
 // Counters: control points per rope and active contacts per step (SplineRope side), and the share of
 // the step's wall time in the bridge's parts (ContactReport / RopeStepRecord timers): midphase (the
@@ -21,6 +22,7 @@
 #include <memory>
 #include <string>
 
+#include "demos/scenes/capstan_scene.h"
 #include "demos/scenes/knot_scene.h"
 #include "demos/scenes/physics_world.h"
 #include "demos/scenes/pile_scene.h"
@@ -102,5 +104,23 @@ void BM_PileSceneStep(benchmark::State& state) {
   state.counters["control_points"] = scene.rope().rod().controlPointCount();
 }
 BENCHMARK(BM_PileSceneStep)->Unit(benchmark::kMillisecond);
+
+// A rope held half a turn round a support at 0.9 exp(mu theta), mu = 0.3, after 1 s, per step:
+// round a 5 cm cylinder (rope-body line contact) and round a taut rope (distributed rope-rope
+// contact, docs/method.md §12), the capstan tests' scenes.
+void BM_CapstanSceneStep(benchmark::State& state) {
+  rope::demos::CapstanSceneSettings settings;
+  settings.obstacle = state.range(0) == 0 ? rope::demos::CapstanSceneSettings::Obstacle::kCylinder
+                                          : rope::demos::CapstanSceneSettings::Obstacle::kTautRope;
+  settings.wrapAngle = 3.14159265358979323846;
+  settings.friction = 0.3;
+  settings.loadRatio = 0.9 * settings.capstanLimit();
+  rope::demos::CapstanScene scene(settings);
+  for (int i = 0; i < stepsFor(1.0, scene.timeStep()); ++i) scene.step();
+  for (auto _ : state) scene.step();
+  state.counters["control_points"] = scene.rope().rod().controlPointCount();
+  state.counters["rope_contacts"] = static_cast<double>(scene.rope().lastStep().ropeContacts);
+}
+BENCHMARK(BM_CapstanSceneStep)->ArgName("taut_rope")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -120,6 +120,47 @@ TEST(RopeRopeContactScenario, FreeRopesCollidingConserveLinearMomentum) {
   EXPECT_GT(scene.lower->rod().momentum().norm(), 0.2 * initial.norm());
 }
 
+// Two free ropes meeting side by side (the upper one parallel to the lower, 1 cm above it, at 2 m/s):
+// a distributed contact (docs/method.md §12), sampled along the touching stretch, whose samples
+// conserve momentum as point contacts do.
+TEST(RopeRopeContactScenario, ParallelRopesMeetInADistributedContactThatConservesMomentum) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  RodSettings rod = cord(Vec3::Zero());
+  rod.massDamping = 0.0;
+  rod.restLength = 1.0;
+  RopeObject lower(Rod::fromSegment(rod, Vec3(-0.5, 0.5, 0), Vec3(0.5, 0.5, 0)), cordContact());
+  rod.restLength = 0.6;
+  const double y = 0.5 + 2.0 * rod.radius + 0.01;
+  Rod falling = Rod::fromSegment(rod, Vec3(-0.3, y, 0), Vec3(0.3, y, 0));
+  falling.setVelocities(PointList(static_cast<size_t>(falling.controlPointCount()), Vec3(0, -2.0, 0)));
+  RopeObject upper(std::move(falling), cordContact());
+  physics.ropes().addRope(lower);
+  physics.ropes().addRope(upper);
+  const auto momentum = [&]() -> Vec3 { return lower.rod().momentum() + upper.rod().momentum(); };
+  const Vec3 initial = momentum();
+  int sampledSteps = 0;
+  double worst = 0.0, longest = 0.0;
+  for (int i = 0; i < 120; ++i) {
+    step(physics);
+    double sampled = 0.0;  // m of rope in acting distributed contact this substep
+    for (const RopePairContactRecord& record : physics.ropes().lastReport().ropeContacts) {
+      if (record.active) sampled += record.weight;
+    }
+    if (sampled > 0.0) ++sampledSteps;
+    longest = std::max(longest, sampled);
+    worst = std::max(worst, (momentum() - initial).norm() / initial.norm());
+  }
+  std::printf("parallel ropes: %d steps in distributed contact, longest %.3f m, worst relative momentum drift %.3g\n",
+              sampledSteps, longest, worst);
+  EXPECT_GT(sampledSteps, 3);
+  // Most of the upper rope's 0.6 m lands along the lower one at once.
+  EXPECT_GT(longest, 0.3);
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_GT(lower.rod().momentum().norm(), 0.2 * initial.norm());
+  physics.ropes().removeRope(upper);
+  physics.ropes().removeRope(lower);
+}
+
 // A removed rope may be destroyed next: the last report keeps no rope-rope record pointing at it.
 TEST(RopeRopeContactScenario, RemovingARopeClearsTheRecordsThatNameIt) {
   CrossingRopes scene(0.02, 3.0);

@@ -37,6 +37,8 @@ constexpr double kTouchingBand = 0.05;
 // (a rope wrapped round or lying along another): it is sampled; shorter ones are crossings, point
 // contacts.
 constexpr double kDistributedLength = 1.0;
+// Length of the chunks of a distributed contact sampled together, in contact spacings (sampleRegion).
+constexpr double kChunkLength = 0.5;
 // Rest arclength, m, by which the touching stretches of one region may be apart (they share capsule
 // ends, where their arclengths are equal up to rounding).
 constexpr double kArcJoin = 1e-9;
@@ -218,6 +220,27 @@ void RopeRopeContacts::dropDistantPairs(std::vector<RopeCapsulePair>& pairs) con
               pairs.end());
 }
 
+RopeRopeContacts::Candidate RopeRopeContacts::contactBetween(int ropeA, double sA, double arcA, int ropeB, double sB,
+                                                             double arcB, double radii, double centres,
+                                                             const Vec3& normal) {
+  Candidate candidate;
+  candidate.record = -1;
+  candidate.ropeA = ropeA;
+  candidate.ropeB = ropeB;
+  candidate.sA = sA;
+  candidate.sB = sB;
+  candidate.arcA = arcA;
+  candidate.arcB = arcB;
+  candidate.spacing = radii;
+  candidate.distance = centres - radii;
+  candidate.normal = normal;
+  candidate.frictionNormalForce = -1.0;
+  candidate.active = false;
+  candidate.relativeVelocity = Vec3::Zero();
+  candidate.coupled = false;
+  return candidate;
+}
+
 void RopeRopeContacts::addTouchingStretch(const std::vector<RopeObject*>& ropes, const RopeCapsulePair& pair,
                                           double closestS, double closestT, double closestDistance, const Vec3& normal,
                                           double centres, int candidate) {
@@ -295,25 +318,85 @@ void RopeRopeContacts::sampleDistributedContacts(const std::vector<RopeObject*>&
 }
 
 void RopeRopeContacts::sampleRegion(const std::vector<RopeObject*>& ropes, size_t first, size_t last) {
-  // Per sampled capsule, per run of consecutive capsules of the other rope (one strand it lies on):
-  // Gauss-Legendre nodes on the union of their touching stretches.
+  // Gauss-Legendre nodes on chunks of about one contact spacing of the sampled rope: consecutive
+  // sampled capsules whose touching stretches continue one another along one strand of the other rope
+  // are sampled together, so that the number of samples follows the length in contact, not the
+  // resolution (a rope refined round a wrap has capsules of about a millimetre; every sample is a
+  // coupling of the dense contact solve, cubic in their number). A capsule touching two strands of the
+  // other rope is sampled once per strand.
   std::sort(stretches_.begin() + static_cast<std::ptrdiff_t>(first), stretches_.begin() + static_cast<std::ptrdiff_t>(last),
             [](const Stretch& x, const Stretch& y) {
               return std::tie(x.sampledCapsule, x.otherCapsule) < std::tie(y.sampledCapsule, y.otherCapsule);
             });
-  size_t begin = first;
-  while (begin < last) {
-    size_t end = begin + 1;
-    while (end < last && stretches_[end].sampledCapsule == stretches_[begin].sampledCapsule &&
-           stretches_[end].otherCapsule <= stretches_[end - 1].otherCapsule + 1) {
-      ++end;
+  const RopeObject& sampled = *ropes[static_cast<size_t>(stretches_[first].sampledRope)];
+  const double spacing = facts_[static_cast<size_t>(stretches_[first].sampledRope)].radius +
+                         facts_[static_cast<size_t>(stretches_[first].otherRope)].radius;
+  const auto parameter = [&](const Stretch& stretch, double t) {
+    return parameterAt(sampled.proxies().proxy(stretch.sampledCapsule), t);
+  };
+  // The open chunk: stretches [chunkFirst, chunkEnd), parameters [chunkS0, chunkS1].
+  size_t chunkFirst = first, chunkEnd = first;
+  double chunkS0 = 0.0, chunkS1 = 0.0, chunkHi = 0.0, chunkBin = 0.0;
+  int chunkCapsule = -1, chunkOtherHigh = -1;
+  const auto flush = [&] {
+    if (chunkEnd > chunkFirst) sampleRun(ropes, chunkFirst, chunkEnd, chunkS0, chunkS1);
+    chunkFirst = chunkEnd;
+  };
+  size_t block = first;
+  while (block < last) {
+    size_t blockEnd = block + 1;
+    bool oneStrand = true;
+    while (blockEnd < last && stretches_[blockEnd].sampledCapsule == stretches_[block].sampledCapsule) {
+      oneStrand = oneStrand && stretches_[blockEnd].otherCapsule <= stretches_[blockEnd - 1].otherCapsule + 1;
+      ++blockEnd;
     }
-    sampleRun(ropes, begin, end);
-    begin = end;
+    double lo = stretches_[block].lo, hi = stretches_[block].hi;
+    for (size_t k = block + 1; k < blockEnd; ++k) {
+      lo = std::min(lo, stretches_[k].lo);
+      hi = std::max(hi, stretches_[k].hi);
+    }
+    const int capsule = stretches_[block].sampledCapsule;
+    const int otherLow = stretches_[block].otherCapsule, otherHigh = stretches_[blockEnd - 1].otherCapsule;
+    // Chunks are bins of the rest arclength, which is material: their nodes stay where they are while
+    // the rope holds still (sticking springs are carried per parameter, rope_stick_memory.h).
+    const double bin = std::floor(ends_[static_cast<size_t>(stretches_[block].sampledRope)][static_cast<size_t>(capsule)].arc /
+                                  (kChunkLength * spacing));
+    const bool continues = chunkEnd > chunkFirst && capsule == chunkCapsule + 1 && chunkHi >= 1.0 && lo <= 0.0 &&
+                           otherLow <= chunkOtherHigh + 1 && otherHigh + 1 >= chunkOtherHigh && bin == chunkBin;
+    if (!continues) flush();
+    if (!oneStrand) {
+      // Per run of consecutive capsules of the other rope, this capsule alone.
+      size_t run = block;
+      while (run < blockEnd) {
+        size_t runEnd = run + 1;
+        double runLo = stretches_[run].lo, runHi = stretches_[run].hi;
+        while (runEnd < blockEnd && stretches_[runEnd].otherCapsule <= stretches_[runEnd - 1].otherCapsule + 1) {
+          runLo = std::min(runLo, stretches_[runEnd].lo);
+          runHi = std::max(runHi, stretches_[runEnd].hi);
+          ++runEnd;
+        }
+        sampleRun(ropes, run, runEnd, parameter(stretches_[run], runLo), parameter(stretches_[run], runHi));
+        run = runEnd;
+      }
+      chunkFirst = chunkEnd = blockEnd;
+      chunkCapsule = -1;
+      block = blockEnd;
+      continue;
+    }
+    if (chunkEnd == chunkFirst) chunkS0 = parameter(stretches_[block], lo);
+    chunkEnd = blockEnd;
+    chunkS1 = parameter(stretches_[block], hi);
+    chunkHi = hi;
+    chunkCapsule = capsule;
+    chunkOtherHigh = otherHigh;
+    chunkBin = bin;
+    block = blockEnd;
   }
+  flush();
 }
 
-void RopeRopeContacts::sampleRun(const std::vector<RopeObject*>& ropes, size_t first, size_t last) {
+void RopeRopeContacts::sampleRun(const std::vector<RopeObject*>& ropes, size_t first, size_t last, double s0,
+                                 double s1) {
   const Stretch& head = stretches_[first];
   const RopeObject& sampled = *ropes[static_cast<size_t>(head.sampledRope)];
   const RopeObject& other = *ropes[static_cast<size_t>(head.otherRope)];
@@ -323,14 +406,8 @@ void RopeRopeContacts::sampleRun(const std::vector<RopeObject*>& ropes, size_t f
   const RopeFacts& factsS = facts_[static_cast<size_t>(head.sampledRope)];
   const RopeFacts& factsO = facts_[static_cast<size_t>(head.otherRope)];
   const double radii = factsS.radius + factsO.radius;
-  double lo = head.lo, hi = head.hi, reach = head.reach;
-  for (size_t k = first + 1; k < last; ++k) {
-    lo = std::min(lo, stretches_[k].lo);
-    hi = std::max(hi, stretches_[k].hi);
-    reach = std::max(reach, stretches_[k].reach);
-  }
-  const CapsuleProxy& proxy = sampled.proxies().proxy(head.sampledCapsule);
-  const double s0 = parameterAt(proxy, lo), s1 = parameterAt(proxy, hi);
+  double reach = head.reach;
+  for (size_t k = first + 1; k < last; ++k) reach = std::max(reach, stretches_[k].reach);
   if (!(s1 > s0)) return;
   const RopeObject::CutPartner* cut = nullptr;
   if (!self) {
@@ -385,21 +462,7 @@ void RopeRopeContacts::sampleRun(const std::vector<RopeObject*>& ropes, size_t f
     if (!(centres > 1e-12 * radii)) continue;  // centre lines meet: the point contacts decide
     normal /= centres;
     if (!(centres - radii < reach)) continue;
-    Candidate candidate;
-    candidate.record = -1;
-    candidate.ropeA = head.sampledRope;
-    candidate.ropeB = head.otherRope;
-    candidate.sA = s;
-    candidate.sB = sO;
-    candidate.arcA = arcS;
-    candidate.arcB = arcO;
-    candidate.spacing = radii;
-    candidate.distance = centres - radii;
-    candidate.normal = normal;
-    candidate.frictionNormalForce = -1.0;
-    candidate.active = false;
-    candidate.relativeVelocity = Vec3::Zero();
-    candidate.coupled = false;
+    Candidate candidate = contactBetween(head.sampledRope, s, arcS, head.otherRope, sO, arcO, radii, centres, normal);
     candidate.sample = true;
     candidate.weight = 0.5 * (s1 - s0) * rule.weights[q] * rodS.restMetric(s);
     samples_.push_back(candidate);
@@ -570,23 +633,8 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
       normal.normalize();
       centres = 0.0;
     }
-    Candidate candidate;
-    candidate.record = -1;
-    candidate.ropeA = pair.ropeA;
-    candidate.ropeB = pair.ropeB;
-    candidate.sA = sA;
-    candidate.sB = sB;
-    candidate.arcA = arcSA;
-    candidate.arcB = arcSB;
-    candidate.spacing = radii;
-    candidate.distance = centres - radii;
-    candidate.normal = normal;
-    candidate.frictionNormalForce = -1.0;
-    candidate.active = false;
     // law, relativeVelocity and coupled: for the kept candidates only, after the thinning.
-    candidate.relativeVelocity = Vec3::Zero();
-    candidate.coupled = false;
-    candidates_.push_back(candidate);
+    candidates_.push_back(contactBetween(pair.ropeA, sA, arcSA, pair.ropeB, sB, arcSB, radii, centres, normal));
     if (!self) {
       addTouchingStretch(ropes, pair, closest.s, closest.t, closest.distance, normal, centres,
                          static_cast<int>(candidates_.size()) - 1);

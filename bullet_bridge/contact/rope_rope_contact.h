@@ -13,17 +13,20 @@
 // rope-rope contact conserves momentum to round-off. As for bodies, contact is unilateral and friction
 // bounded by the actual normal force: contacts that come out pulling are released, contacts the solve
 // predicts to end the step overlapping are switched on, and friction bounds are re-estimated from the
-// end-of-step normal force, at most 6 small solves per substep (the ropes' factors are reused).
+// end-of-step normal force, at most 6 small solves per substep (12 with distributed samples, below;
+// the ropes' factors are reused).
 //
 // Distributed contact (docs/method.md §12, eqs. 37a-b): where two *different* ropes touch along a
 // stretch at least one contact spacing (r_A + r_B) long (a rope wrapped round a taut one, or lying
 // along another), the point contacts there are replaced by Gauss-Legendre samples along the touching
-// stretch of the rope that curves round the other, each projected onto the other curve, with the
+// stretch of the rope that curves round the other, per chunk of half a contact spacing of its rest
+// arclength (so their number follows the length in contact, not the resolution), each projected
+// onto the other curve, with the
 // point law per contact spacing times the rest length it stands for, and rope-body samples' friction:
 // a sticking spring whose stretch is carried along the sampled rope (rope_stick_memory.h), or
 // exactly mu f_n when sliding. Point contacts with regularised friction could not hold a rope round a
 // taut rope (crept at 7-103 mm/s at 0.9 of the capstan limit: 3-4 contacts that jumped along the wrap
-// from substep to substep); the samples hold it to 1e-7 m/s. Crossings (shorter stretches) and
+// from substep to substep); the samples hold it to 2e-7 m/s. Crossings (shorter stretches) and
 // self-contact stay point contacts. Samples are not interaction points (no knot each).
 //
 // Excluded: two points of one rope closer than BulletRopeSettings::selfContactExclusion along the rest
@@ -154,11 +157,16 @@ class RopeRopeContacts {
   // m: the gap the pair's step may close (speculative margin and both capsules' speeds).
   double reach(const RopeCapsulePair& pair) const;
   bool mayTouch(const RopeCapsulePair& pair) const;
+  // A contact of C_A(sA) with C_B(sB), centres m apart along normal (from B into A), not yet acting.
+  static Candidate contactBetween(int ropeA, double sA, double arcA, int ropeB, double sB, double arcB, double radii,
+                                  double centres, const Vec3& normal);
   void addTouchingStretch(const std::vector<RopeObject*>& ropes, const RopeCapsulePair& pair, double closestS,
                           double closestT, double closestDistance, const Vec3& normal, double centres, int candidate);
   void sampleDistributedContacts(const std::vector<RopeObject*>& ropes);
   void sampleRegion(const std::vector<RopeObject*>& ropes, size_t first, size_t last);
-  void sampleRun(const std::vector<RopeObject*>& ropes, size_t first, size_t last);
+  // Gauss-Legendre nodes on [s0, s1] of the sampled rope, each projected onto the nearest of the other
+  // rope's capsules that stretches [first, last) name.
+  void sampleRun(const std::vector<RopeObject*>& ropes, size_t first, size_t last, double s0, double s1);
   void startSample(const RopeObject& sampled, const RopeObject& other, Candidate& candidate) const;
   CouplingLaw lawOf(const Candidate& candidate, double h) const;
   bool updateSampleFriction(Candidate& candidate, int k, double normalForce, double h);

@@ -318,9 +318,9 @@ void RopeRopeContacts::sampleDistributedContacts(const std::vector<RopeObject*>&
 }
 
 void RopeRopeContacts::sampleRegion(const std::vector<RopeObject*>& ropes, size_t first, size_t last) {
-  // Gauss-Legendre nodes on chunks of about one contact spacing of the sampled rope: consecutive
-  // sampled capsules whose touching stretches continue one another along one strand of the other rope
-  // are sampled together, so that the number of samples follows the length in contact, not the
+  // Gauss-Legendre nodes on chunks of the sampled rope, bins of kChunkLength contact spacings of its
+  // rest arclength: consecutive sampled capsules in one bin whose touching stretches continue one
+  // another along one strand of the other rope are sampled together, so that the number of samples follows the length in contact, not the
   // resolution (a rope refined round a wrap has capsules of about a millimetre; every sample is a
   // coupling of the dense contact solve, cubic in their number). A capsule touching two strands of the
   // other rope is sampled once per strand.

@@ -320,10 +320,10 @@ void RopeRopeContacts::sampleDistributedContacts(const std::vector<RopeObject*>&
 void RopeRopeContacts::sampleRegion(const std::vector<RopeObject*>& ropes, size_t first, size_t last) {
   // Gauss-Legendre nodes on chunks of the sampled rope, bins of kChunkLength contact spacings of its
   // rest arclength: consecutive sampled capsules in one bin whose touching stretches continue one
-  // another along one strand of the other rope are sampled together, so that the number of samples follows the length in contact, not the
-  // resolution (a rope refined round a wrap has capsules of about a millimetre; every sample is a
-  // coupling of the dense contact solve, cubic in their number). A capsule touching two strands of the
-  // other rope is sampled once per strand.
+  // another along one strand of the other rope are sampled together, so that the number of samples
+  // follows the length in contact, not the resolution (a rope refined round a wrap has capsules of
+  // about a millimetre; every sample is a coupling of the dense contact solve, cubic in their
+  // number). A capsule touching two strands of the other rope is sampled once per strand.
   std::sort(stretches_.begin() + static_cast<std::ptrdiff_t>(first), stretches_.begin() + static_cast<std::ptrdiff_t>(last),
             [](const Stretch& x, const Stretch& y) {
               return std::tie(x.sampledCapsule, x.otherCapsule) < std::tie(y.sampledCapsule, y.otherCapsule);
@@ -402,18 +402,17 @@ void RopeRopeContacts::sampleRun(const std::vector<RopeObject*>& ropes, size_t f
   const RopeObject& other = *ropes[static_cast<size_t>(head.otherRope)];
   const Rod& rodS = sampled.rod();
   const Rod& rodO = other.rod();
-  const bool self = head.sampledRope == head.otherRope;
   const RopeFacts& factsS = facts_[static_cast<size_t>(head.sampledRope)];
   const RopeFacts& factsO = facts_[static_cast<size_t>(head.otherRope)];
   const double radii = factsS.radius + factsO.radius;
   double reach = head.reach;
   for (size_t k = first + 1; k < last; ++k) reach = std::max(reach, stretches_[k].reach);
   if (!(s1 > s0)) return;
+  // Two ropes only (self-contact stays point contacts); two pieces cut from one rope are one rope
+  // near their cut.
   const RopeObject::CutPartner* cut = nullptr;
-  if (!self) {
-    for (const RopeObject::CutPartner& partner : sampled.cutPartners()) {
-      if (partner.rope == &other) cut = &partner;
-    }
+  for (const RopeObject::CutPartner& partner : sampled.cutPartners()) {
+    if (partner.rope == &other) cut = &partner;
   }
   const GaussRule rule = gaussLegendre(sampled.settings().contactQuadraturePoints);
   for (int q = 0; q < rule.count; ++q) {
@@ -450,7 +449,6 @@ void RopeRopeContacts::sampleRun(const std::vector<RopeObject*>& ropes, size_t f
     }
     const double arcS = restArcAt(rodS, restArc_[static_cast<size_t>(head.sampledRope)], s);
     const double arcO = restArcAt(rodO, restArc_[static_cast<size_t>(head.otherRope)], sO);
-    if (self && std::abs(arcS - arcO) < factsS.exclusion) continue;
     if (cut != nullptr) {
       const double cutS = restArcAt(rodS, restArc_[static_cast<size_t>(head.sampledRope)], cut->ownEnd);
       const double cutO = restArcAt(rodO, restArc_[static_cast<size_t>(head.otherRope)], cut->partnerEnd);

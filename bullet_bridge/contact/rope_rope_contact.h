@@ -27,7 +27,8 @@
 // exactly mu f_n when sliding. Point contacts with regularised friction could not hold a rope round a
 // taut rope (crept at 7-103 mm/s at 0.9 of the capstan limit: 3-4 contacts that jumped along the wrap
 // from substep to substep); the samples hold it to 2e-7 m/s. Crossings (shorter stretches) and
-// self-contact stay point contacts. Samples are not interaction points (no knot each).
+// self-contact stay point contacts (docs/method.md §12 says what distributed self-contact did to the
+// knot and the pile). Samples are not interaction points (no knot each).
 //
 // Excluded: two points of one rope closer than BulletRopeSettings::selfContactExclusion along the rest
 // curve (neighbouring capsules always overlap; that is the rope, not a contact), the same across the

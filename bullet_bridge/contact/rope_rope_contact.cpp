@@ -144,9 +144,10 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
     }
     // Curvature vector of each capsule's stretch of curve (1/m, towards the centre of curvature), from
     // the turn of the chords on either side: what decides which rope a distributed contact samples.
+    // Only two different ropes have distributed contacts (a lone rope's knot needs none).
     std::vector<Vec3>& bends = bends_[r];
     bends.assign(static_cast<size_t>(proxies.size()), Vec3::Zero());
-    for (int i = 0; i < proxies.size(); ++i) {
+    for (int i = 0; ropes.size() > 1 && i < proxies.size(); ++i) {
       const int before = std::max(0, i - 1), after = std::min(proxies.size() - 1, i + 1);
       if (before == after) continue;
       const Capsule c0 = proxies.capsule(before), c1 = proxies.capsule(after);

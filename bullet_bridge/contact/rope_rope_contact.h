@@ -21,10 +21,9 @@
 // along another), the point contacts there are replaced by Gauss-Legendre samples along the touching
 // stretch of the rope that curves round the other, per chunk of half a contact spacing of its rest
 // arclength (so their number follows the length in contact, not the resolution), each projected
-// onto the other curve, with the
-// point law per contact spacing times the rest length it stands for, and rope-body samples' friction:
-// a sticking spring whose stretch is carried along the sampled rope (rope_stick_memory.h), or
-// exactly mu f_n when sliding. Point contacts with regularised friction could not hold a rope round a
+// onto the other curve, with the point law per contact spacing times the rest length it stands for,
+// and rope-body samples' friction: a sticking spring whose stretch is carried along the sampled rope
+// (rope_stick_memory.h), or exactly mu f_n when sliding. Point contacts with regularised friction could not hold a rope round a
 // taut rope (crept at 7-103 mm/s at 0.9 of the capstan limit: 3-4 contacts that jumped along the wrap
 // from substep to substep); the samples hold it to 2e-7 m/s. Crossings (shorter stretches) and
 // self-contact stay point contacts (docs/method.md §12 says what distributed self-contact did to the

@@ -2,8 +2,8 @@
 #include "bullet_bridge/contact/rope_stick_memory.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
-#include <tuple>
 
 namespace rope::bullet {
 

@@ -392,6 +392,34 @@ TEST(RodSplitStep, MarkedInteractionGetsAKnot) {
   EXPECT_GE(report.insertions, 1);
 }
 
+// A coupling that acts marks both its points as interaction points (a knot there at commit), unless
+// it is flagged as a quadrature sample of a distributed contact (interaction = false).
+TEST(CoupledSolve, OnlyInteractionCouplingsGetKnots) {
+  for (const bool interaction : {true, false}) {
+    RodSettings settings = settingsFor(8);
+    settings.adaptive = true;
+    Rod a = Rod::fromSegment(settings, Vec3(0, 0, 0), Vec3(1, 0, 0));
+    Rod b = Rod::fromSegment(settings, Vec3(0, 0.01, 0), Vec3(1, 0.01, 0));
+    a.pin(0.0);
+    b.pin(0.0);
+    ASSERT_TRUE(a.solveTrial(0.01).ok);
+    ASSERT_TRUE(b.solveTrial(0.01).ok);
+    PointCoupling coupling{0, 0.4321, 1, 0.6543};
+    coupling.interaction = interaction;
+    CoupledSolve solve;
+    solve.prepare({&a, &b}, {coupling});
+    CouplingLaw law;
+    law.impulse = Vec3(0, 1e-3, 0);
+    std::vector<Vec3> impulses;
+    ASSERT_TRUE(solve.solveImpulses({law}, impulses));
+    solve.apply(impulses);
+    a.commitTrial();
+    b.commitTrial();
+    EXPECT_EQ(a.knots().multiplicity(0.4321), interaction ? 1 : 0) << "interaction " << interaction;
+    EXPECT_EQ(b.knots().multiplicity(0.6543), interaction ? 1 : 0) << "interaction " << interaction;
+  }
+}
+
 // A generalised impulse that is the sum of two curve-point impulses, b(s_k) d_k, gets the sum of
 // their responses from one solve (what the sliding-bound GMRES products rely on); without a trial
 // or with a non-finite entry it is refused by name, the input untouched in the latter case.

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <queue>
 #include <tuple>
 
 #include <Eigen/Geometry>
@@ -11,6 +13,7 @@
 #include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/narrowphase/segment_segment_distance.h"
 #include "rope/common/error.h"
+#include "rope/spline/bspline_curve.h"
 #include "rope/spline/gauss_legendre.h"
 
 namespace rope::bullet {
@@ -125,6 +128,8 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
   boxes_.resize(ropes.size());
   bends_.resize(ropes.size());
   facts_.resize(ropes.size());
+  deviation_.resize(ropes.size());
+  roundoff_.resize(ropes.size());
   for (size_t r = 0; r < ropes.size(); ++r) {
     const Rod& rod = ropes[r]->rod();
     const CapsuleProxies& proxies = ropes[r]->proxies();
@@ -136,12 +141,17 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
     std::vector<AxisBox>& boxes = boxes_[r];
     ends.clear();
     boxes.clear();
+    deviation_[r].clear();
+    roundoff_[r] = 0.0;
     if (proxies.size() == 0) continue;  // no pair can name one of its capsules
     ends.resize(static_cast<size_t>(proxies.size()) + 1);
+    endCurve_.resize(static_cast<size_t>(proxies.size()) + 1);
     for (int i = 0; i <= proxies.size(); ++i) {
       const double s = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
       ends[static_cast<size_t>(i)] = {restArcAt(rod, restArc_[r], s), rod.velocity(s).norm()};
+      endCurve_[static_cast<size_t>(i)] = evaluateCurve(rod.knots(), rod.controlPoints(), s);
     }
+    boundAxisDeviation(rod, proxies, deviation_[r], roundoff_[r]);
     // Curvature vector of each capsule's stretch of curve (1/m, towards the centre of curvature), from
     // the turn of the chords on either side: what decides which rope a distributed contact samples.
     // Only two different ropes have distributed contacts (a lone rope's knot needs none).
@@ -174,6 +184,43 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
       box.speed = std::max(ends[static_cast<size_t>(i)].speed, ends[static_cast<size_t>(i) + 1].speed);
     }
   }
+}
+
+void RopeRopeContacts::boundAxisDeviation(const Rod& rod, const CapsuleProxies& proxies, std::vector<double>& deviation,
+                                          double& roundoff) const {
+  // Inside one knot span a curve of degree <= 3 is a cubic P(t) = C(s0 + t (s1 - s0)) on the capsule,
+  // and its departure from the chord, delta(t) = P(t) - P(0) - t (P(1) - P(0)), vanishes at both ends:
+  // delta(t) = t (1 - t) q(t) with q linear, q(0) = P'(0) - chord, q(1) = chord - P'(1). So
+  // |delta| <= max(|q(0)|, |q(1)|) / 4 everywhere on the capsule; the axis's ends may also differ from
+  // C(s0), C(s1) (btScalar rounding). Higher degrees, and a derivative that jumps at a knot of
+  // multiplicity >= degree, get no bound (infinity: every hit of such a capsule is evaluated).
+  const KnotVector& knots = rod.knots();
+  const int degree = knots.degree();
+  const int count = proxies.size();
+  deviation.assign(static_cast<size_t>(count), std::numeric_limits<double>::infinity());
+  double scale = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const Capsule capsule = proxies.capsule(i);
+    for (int k = 0; k < 3; ++k) {
+      scale = std::max({scale, std::abs(static_cast<double>(capsule.a[k])), std::abs(static_cast<double>(capsule.b[k]))});
+    }
+    if (degree > 3) continue;
+    const CapsuleProxy& proxy = proxies.proxy(i);
+    const CurvePoint& start = endCurve_[static_cast<size_t>(i)];
+    const CurvePoint& end = endCurve_[static_cast<size_t>(i) + 1];
+    // C' at s1 as evaluated comes from the span right of a knot there: the capsule's own only if C' is
+    // continuous at s1.
+    if (i + 1 < count && knots.multiplicity(proxy.s1) >= degree) continue;
+    const double width = proxy.s1 - proxy.s0;
+    const Vec3 chord = end.position - start.position;
+    const double bulge = 0.25 * std::max((width * start.firstDerivative - chord).norm(),
+                                         (chord - width * end.firstDerivative).norm());
+    const Vec3 a(capsule.a.x(), capsule.a.y(), capsule.a.z()), b(capsule.b.x(), capsule.b.y(), capsule.b.z());
+    const double axisEnds = std::max((a - start.position).norm(), (b - end.position).norm());
+    deviation[static_cast<size_t>(i)] = (bulge + axisEnds) * (1.0 + 1e-9);
+  }
+  // The rounding of the axes' distance (btScalar) and of the curve points (double), m.
+  roundoff = 16.0 * (static_cast<double>(std::numeric_limits<btScalar>::epsilon()) + 1e-16) * (1.0 + scale);
 }
 
 double RopeRopeContacts::reach(const RopeCapsulePair& pair) const {
@@ -566,10 +613,31 @@ void RopeRopeContacts::rememberSampleFriction(const std::vector<RopeObject*>& ro
   memory_.commit();
 }
 
+RopeRopeContacts::Candidate RopeRopeContacts::pointContact(const Rod& rodA, const Rod& rodB, const Hit& hit,
+                                                            double* centresOut) {
+  const Vec3 pointA = rodA.position(hit.sA);
+  const Vec3 pointB = rodB.position(hit.sB);
+  Vec3 normal = pointA - pointB;
+  double centres = normal.norm();
+  if (centres > 1e-12 * hit.spacing) {
+    normal /= centres;
+  } else {
+    // Centre lines meet: separate across both tangents (or any direction normal to A's).
+    normal = rodA.tangent(hit.sA).cross(rodB.tangent(hit.sB));
+    if (!(normal.norm() > 1e-9)) normal = rodA.tangent(hit.sA).unitOrthogonal();
+    normal.normalize();
+    centres = 0.0;
+  }
+  if (centresOut != nullptr) *centresOut = centres;
+  // law, relativeVelocity and coupled: for the kept candidates only, after the thinning.
+  return contactBetween(hit.ropeA, hit.sA, hit.arcA, hit.ropeB, hit.sB, hit.arcB, hit.spacing, centres, normal);
+}
+
 int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs,
                             double h, std::vector<RopePairContactRecord>& records) {
   candidates_.clear();
   stretches_.clear();
+  hits_.clear();
 
   // ---- narrowphase, at the ropes' state before the step ----
   for (const RopeCapsulePair& pair : pairs) {
@@ -619,80 +687,94 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     if (self && std::abs(arcSA - arcSB) < exclusion) continue;
     if (cut != nullptr && std::abs(arcSA - cutArcA) + std::abs(arcSB - cutArcB) < exclusion) continue;
 
-    const Vec3 pointA = rodA.position(sA);
-    const Vec3 pointB = rodB.position(sB);
-    Vec3 normal = pointA - pointB;
-    double centres = normal.norm();
-    if (centres > 1e-12 * radii) {
-      normal /= centres;
-    } else {
-      // Centre lines meet: separate across both tangents (or any direction normal to A's).
-      normal = rodA.tangent(sA).cross(rodB.tangent(sB));
-      if (!(normal.norm() > 1e-9)) normal = rodA.tangent(sA).unitOrthogonal();
-      normal.normalize();
-      centres = 0.0;
-    }
-    // law, relativeVelocity and coupled: for the kept candidates only, after the thinning.
-    candidates_.push_back(contactBetween(pair.ropeA, sA, arcSA, pair.ropeB, sB, arcSB, radii, centres, normal));
+    // Until evaluated on the curve, the gap's lower bound: the axes' gap less both axes' departure from
+    // the curve (boundAxisDeviation).
+    const double departure = deviation_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)] +
+                             deviation_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)] +
+                             roundoff_[static_cast<size_t>(pair.ropeA)] + roundoff_[static_cast<size_t>(pair.ropeB)];
+    Hit hit{closest.distance - radii - departure, pair.ropeA, sA, pair.ropeB, sB, arcSA, arcSB, radii, -1};
     if (!self) {
-      addTouchingStretch(ropes, pair, closest.s, closest.t, closest.distance, normal, centres,
-                         static_cast<int>(candidates_.size()) - 1);
+      // Two ropes: the curve now, for the touching stretch (which rope curves round the other).
+      double centres = 0.0;
+      candidates_.push_back(pointContact(rodA, rodB, hit, &centres));
+      hit.candidate = static_cast<int>(candidates_.size()) - 1;
+      hit.gap = candidates_.back().distance;
+      addTouchingStretch(ropes, pair, closest.s, closest.t, closest.distance, candidates_.back().normal, centres,
+                         hit.candidate);
     }
+    hits_.push_back(hit);
   }
   sampleDistributedContacts(ropes);
 
   // One contact per place: neighbouring capsule pairs find the same crossing (or the same stretch of a
-  // side-by-side contact) several times. Deepest first; a candidate within one contact spacing (the sum
-  // of the radii, along both rest curves) of an accepted one is dropped, so a line contact is sampled
-  // about once per diameter.
-  // Sorted through small keys (a knot has about 900 candidates of some 200 bytes each). Candidates
-  // with equal keys are the same contact found twice (one point, the same everything), so their
-  // order does not matter.
-  sortKeys_.clear();
-  for (size_t c = 0; c < candidates_.size(); ++c) {
-    const Candidate& k = candidates_[c];
-    if (k.suppressed) continue;  // inside a distributed contact, which its samples carry
-    sortKeys_.push_back({k.distance, k.ropeA, k.sA, k.ropeB, k.sB, static_cast<int>(c)});
-  }
-  std::sort(sortKeys_.begin(), sortKeys_.end(), [](const SortKey& a, const SortKey& b) {
-    return std::tie(a.distance, a.ropeA, a.sA, a.ropeB, a.sB) < std::tie(b.distance, b.ropeA, b.sA, b.ropeB, b.sB);
-  });
-  sorted_.clear();
-  for (const SortKey& key : sortKeys_) sorted_.push_back(candidates_[static_cast<size_t>(key.index)]);
-  candidates_.swap(sorted_);
-  // The accepted ones are also kept ordered by (ropeA, ropeB, arcA), so each test looks only at those
-  // within one spacing along A: O(c log c) instead of comparing every candidate with every accepted
-  // one (a tight knot has hundreds of candidates).
-  const auto byArc = [this](int x, double arc, int ropeA, int ropeB) {
-    const Candidate& k = candidates_[static_cast<size_t>(x)];
-    return std::tie(k.ropeA, k.ropeB, k.arcA) < std::tie(ropeA, ropeB, arc);
+  // side-by-side contact) several times. Deepest first on the curve, by (gap, ropeA, sA, ropeB, sB); a
+  // hit within one contact spacing (the sum of the radii, along both rest curves) of an accepted one is
+  // dropped, so a line contact is sampled about once per diameter. Hits with equal keys are the same
+  // contact found twice (one point, the same everything), so their order does not matter.
+  // Lazily, with the same result: a tight knot has some 900 hits for 25 contacts, and most are dropped
+  // before their curve points are needed. The hits are taken in the order of a lower bound of their gap
+  // (the axes'); one near an accepted hit is dropped at once (the accepted one is deeper than even the
+  // bound); one that is not is evaluated on the curve and waits, by its exact gap, until no bound below
+  // it remains.
+  hits_.erase(std::remove_if(hits_.begin(), hits_.end(),
+                             [this](const Hit& hit) {
+                               // Inside a distributed contact, which its samples carry.
+                               return hit.candidate >= 0 && candidates_[static_cast<size_t>(hit.candidate)].suppressed;
+                             }),
+              hits_.end());
+  const auto before = [](const Hit& a, const Hit& b) {
+    return std::tie(a.gap, a.ropeA, a.sA, a.ropeB, a.sB) < std::tie(b.gap, b.ropeA, b.sA, b.ropeB, b.sB);
   };
-  keptByArc_.clear();
-  size_t kept = 0;
-  for (size_t c = 0; c < candidates_.size(); ++c) {
-    const Candidate candidate = candidates_[c];
-    auto it = std::lower_bound(keptByArc_.begin(), keptByArc_.end(), candidate.arcA - candidate.spacing,
-                               [&](int x, double arc) { return byArc(x, arc, candidate.ropeA, candidate.ropeB); });
-    bool near = false;
-    for (; it != keptByArc_.end() && !near; ++it) {
-      const Candidate& other = candidates_[static_cast<size_t>(*it)];
-      if (other.ropeA != candidate.ropeA || other.ropeB != candidate.ropeB || !(other.arcA < candidate.arcA + candidate.spacing))
-        break;
-      near = std::abs(other.arcA - candidate.arcA) < candidate.spacing &&
-             std::abs(other.arcB - candidate.arcB) < candidate.spacing;
+  std::sort(hits_.begin(), hits_.end(), before);
+  // The accepted ones are also kept ordered by (ropeA, ropeB, arcA), so each test looks only at those
+  // within one spacing along A: O(c log c) instead of comparing every hit with every accepted one.
+  const auto byArc = [](const Hit& x, const Hit& y) {
+    return std::tie(x.ropeA, x.ropeB, x.arcA) < std::tie(y.ropeA, y.ropeB, y.arcA);
+  };
+  const auto nearAccepted = [&](const Hit& hit) {
+    Hit from = hit;
+    from.arcA = hit.arcA - hit.spacing;
+    auto it = std::lower_bound(keptByArc_.begin(), keptByArc_.end(), from,
+                               [&](int x, const Hit& y) { return byArc(hits_[static_cast<size_t>(x)], y); });
+    for (; it != keptByArc_.end(); ++it) {
+      const Hit& other = hits_[static_cast<size_t>(*it)];
+      if (other.ropeA != hit.ropeA || other.ropeB != hit.ropeB || !(other.arcA < hit.arcA + hit.spacing)) break;
+      if (std::abs(other.arcA - hit.arcA) < hit.spacing && std::abs(other.arcB - hit.arcB) < hit.spacing) return true;
     }
-    if (near) continue;
-    candidates_[kept] = candidate;
-    const auto at = std::upper_bound(keptByArc_.begin(), keptByArc_.end(), static_cast<int>(kept),
-                                     [this](int x, int y) {
-                                       const Candidate& a = candidates_[static_cast<size_t>(x)];
-                                       const Candidate& b = candidates_[static_cast<size_t>(y)];
-                                       return std::tie(a.ropeA, a.ropeB, a.arcA) < std::tie(b.ropeA, b.ropeB, b.arcA);
-                                     });
-    keptByArc_.insert(at, static_cast<int>(kept));
-    ++kept;
+    return false;
+  };
+  // Evaluated hits waiting, smallest key on top.
+  const auto after = [&](int x, int y) { return before(hits_[static_cast<size_t>(y)], hits_[static_cast<size_t>(x)]); };
+  waiting_.clear();
+  keptByArc_.clear();
+  kept_.clear();
+  size_t next = 0;
+  while (next < hits_.size() || !waiting_.empty()) {
+    int index;
+    if (!waiting_.empty() && (next == hits_.size() || !before(hits_[next], hits_[static_cast<size_t>(waiting_.front())]))) {
+      std::pop_heap(waiting_.begin(), waiting_.end(), after);
+      index = waiting_.back();
+      waiting_.pop_back();
+    } else {
+      index = static_cast<int>(next++);
+    }
+    Hit& hit = hits_[static_cast<size_t>(index)];
+    if (nearAccepted(hit)) continue;
+    if (hit.candidate < 0) {
+      candidates_.push_back(pointContact(ropes[static_cast<size_t>(hit.ropeA)]->rod(),
+                                         ropes[static_cast<size_t>(hit.ropeB)]->rod(), hit));
+      hit.candidate = static_cast<int>(candidates_.size()) - 1;
+      hit.gap = candidates_.back().distance;
+      waiting_.push_back(index);
+      std::push_heap(waiting_.begin(), waiting_.end(), after);
+      continue;
+    }
+    kept_.push_back(candidates_[static_cast<size_t>(hit.candidate)]);
+    const auto at = std::upper_bound(keptByArc_.begin(), keptByArc_.end(), hit,
+                                     [&](const Hit& x, int y) { return byArc(x, hits_[static_cast<size_t>(y)]); });
+    keptByArc_.insert(at, index);
   }
-  candidates_.resize(kept);
+  candidates_.swap(kept_);
   candidates_.insert(candidates_.end(), samples_.begin(), samples_.end());
   for (Candidate& candidate : candidates_) {
     const RopeObject& ropeA = *ropes[static_cast<size_t>(candidate.ropeA)];

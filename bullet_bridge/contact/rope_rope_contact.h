@@ -42,9 +42,11 @@
 #include "bullet_bridge/contact/rope_stick_memory.h"
 #include "bullet_bridge/friction_combination.h"
 #include "rope/rod/coupled_solve.h"
+#include "rope/spline/bspline_curve.h"
 
 namespace rope::bullet {
 
+class CapsuleProxies;
 class RopeObject;
 
 // A broadphase pair of rope capsules, ordered: ropeA < ropeB, or capsuleA < capsuleB on one rope.
@@ -116,17 +118,24 @@ class RopeRopeContacts {
   RopeStickMemory memory_;
   std::vector<std::vector<Vec3>> bends_;  // per rope: curvature vector of each capsule, 1/m
   std::vector<Candidate> candidates_;
-  struct SortKey {
-    double distance;
+  // A capsule pair within reach, before the thinning: its axes' closest points as curve parameters.
+  struct Hit {
+    double gap;         // m, < 0 overlapping: on the curve once evaluated (candidate >= 0), else a lower bound
     int ropeA;
     double sA;
     int ropeB;
     double sB;
-    int index;  // into candidates_
+    double arcA, arcB;  // rest arclength of sA, sB, m
+    double spacing;     // m of rest length: closer hits are the same contact
+    int candidate;      // its point contact in candidates_ once evaluated (two ropes: at once), else -1
   };
-  std::vector<SortKey> sortKeys_;
-  std::vector<Candidate> sorted_;
-  std::vector<int> keptByArc_;  // accepted candidates ordered by (ropeA, ropeB, arcA), during the thinning
+  std::vector<Hit> hits_;
+  std::vector<int> waiting_;    // evaluated hits not yet accepted or dropped: a heap, during the thinning
+  std::vector<int> keptByArc_;  // accepted hits ordered by (ropeA, ropeB, arcA), during the thinning
+  std::vector<Candidate> kept_;
+  std::vector<CurvePoint> endCurve_;  // the curve at each capsule end of one rope, during prepare()
+  std::vector<std::vector<double>> deviation_;  // per rope and capsule: bound of the axis's departure from the curve, m
+  std::vector<double> roundoff_;  // per rope: bound of the rounding of an axis distance, m
   std::vector<PointCoupling> couplings_;
   std::vector<CouplingLaw> laws_;
   std::vector<int> coupled_;  // candidate index of each coupling
@@ -160,6 +169,13 @@ class RopeRopeContacts {
   // A contact of C_A(sA) with C_B(sB), centres m apart along normal (from B into A), not yet acting.
   static Candidate contactBetween(int ropeA, double sA, double arcA, int ropeB, double sB, double arcB, double radii,
                                   double centres, const Vec3& normal);
+  // deviation[i]: a bound of the distance of capsule i's axis point at t from C(s0 + t (s1 - s0)), m;
+  // roundoff: of the rounding in a distance of axis points (btScalar), m. Reads endCurve_.
+  void boundAxisDeviation(const Rod& rod, const CapsuleProxies& proxies, std::vector<double>& deviation,
+                          double& roundoff) const;
+  // The point contact of a hit, on the curves at the ropes' state before the step; centresOut (if
+  // given): the distance of the curve points, m.
+  static Candidate pointContact(const Rod& rodA, const Rod& rodB, const Hit& hit, double* centresOut = nullptr);
   void addTouchingStretch(const std::vector<RopeObject*>& ropes, const RopeCapsulePair& pair, double closestS,
                           double closestT, double closestDistance, const Vec3& normal, double centres, int candidate);
   void sampleDistributedContacts(const std::vector<RopeObject*>& ropes);

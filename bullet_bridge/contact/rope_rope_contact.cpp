@@ -716,16 +716,21 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   // (the axes'); one near an accepted hit is dropped at once (the accepted one is deeper than even the
   // bound); one that is not is evaluated on the curve and waits, by its exact gap, until no bound below
   // it remains.
-  hits_.erase(std::remove_if(hits_.begin(), hits_.end(),
-                             [this](const Hit& hit) {
-                               // Inside a distributed contact, which its samples carry.
-                               return hit.candidate >= 0 && candidates_[static_cast<size_t>(hit.candidate)].suppressed;
-                             }),
-              hits_.end());
   const auto before = [](const Hit& a, const Hit& b) {
     return std::tie(a.gap, a.ropeA, a.sA, a.ropeB, a.sB) < std::tie(b.gap, b.ropeA, b.sA, b.ropeB, b.sB);
   };
-  std::sort(hits_.begin(), hits_.end(), before);
+  // Sorted through small keys (a hit is some 70 bytes); the rest of the key only breaks ties of gaps.
+  order_.clear();
+  for (size_t c = 0; c < hits_.size(); ++c) {
+    const Hit& hit = hits_[c];
+    // Inside a distributed contact, which its samples carry.
+    if (hit.candidate >= 0 && candidates_[static_cast<size_t>(hit.candidate)].suppressed) continue;
+    order_.push_back({hit.gap, static_cast<int>(c)});
+  }
+  std::sort(order_.begin(), order_.end(), [&](const HitKey& a, const HitKey& b) {
+    if (a.gap != b.gap) return a.gap < b.gap;
+    return before(hits_[static_cast<size_t>(a.index)], hits_[static_cast<size_t>(b.index)]);
+  });
   // The accepted ones are also kept ordered by (ropeA, ropeB, arcA), so each test looks only at those
   // within one spacing along A: O(c log c) instead of comparing every hit with every accepted one.
   const auto byArc = [](const Hit& x, const Hit& y) {
@@ -749,14 +754,16 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   keptByArc_.clear();
   kept_.clear();
   size_t next = 0;
-  while (next < hits_.size() || !waiting_.empty()) {
+  while (next < order_.size() || !waiting_.empty()) {
     int index;
-    if (!waiting_.empty() && (next == hits_.size() || !before(hits_[next], hits_[static_cast<size_t>(waiting_.front())]))) {
+    if (!waiting_.empty() &&
+        (next == order_.size() ||
+         !before(hits_[static_cast<size_t>(order_[next].index)], hits_[static_cast<size_t>(waiting_.front())]))) {
       std::pop_heap(waiting_.begin(), waiting_.end(), after);
       index = waiting_.back();
       waiting_.pop_back();
     } else {
-      index = static_cast<int>(next++);
+      index = order_[next++].index;
     }
     Hit& hit = hits_[static_cast<size_t>(index)];
     if (nearAccepted(hit)) continue;

@@ -130,6 +130,11 @@ class RopeRopeContacts {
     int candidate;      // its point contact in candidates_ once evaluated (two ropes: at once), else -1
   };
   std::vector<Hit> hits_;
+  struct HitKey {
+    double gap;
+    int index;  // into hits_
+  };
+  std::vector<HitKey> order_;   // the hits to thin, by (gap, ropeA, sA, ropeB, sB)
   std::vector<int> waiting_;    // evaluated hits not yet accepted or dropped: a heap, during the thinning
   std::vector<int> keptByArc_;  // accepted hits ordered by (ropeA, ropeB, arcA), during the thinning
   std::vector<Candidate> kept_;

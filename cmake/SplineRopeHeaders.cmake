@@ -82,6 +82,7 @@ set(SPLINEROPE_BULLET_BRIDGE_SUPPORT_HEADERS
   bullet_bridge/contact/line_contact.h             # BodyContacts holds its sampler
   bullet_bridge/contact/friction_anchors.h         # BodyContacts holds the friction anchors
   bullet_bridge/contact/rope_stick_memory.h        # RopeRopeContacts holds the rope-rope stick state
+  bullet_bridge/detail/radix_sort.h                # RopeRopeContacts holds its sort's keys
   bullet_bridge/collision_object/rope_shape.h      # the rope's compound shape, held by capsule_proxies.h
   bullet_bridge/collision_object/rope_dispatch.h   # RopeWorld holds the rope pairs' dispatch
 )

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "bullet_bridge/contact/contact_response.h"
+#include "bullet_bridge/detail/radix_sort.h"
 #include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/narrowphase/segment_segment_distance.h"
 #include "rope/common/error.h"
@@ -719,7 +720,8 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   const auto before = [](const Hit& a, const Hit& b) {
     return std::tie(a.gap, a.ropeA, a.sA, a.ropeB, a.sB) < std::tie(b.gap, b.ropeA, b.sA, b.ropeB, b.sB);
   };
-  // Sorted through small keys (a hit is some 70 bytes); the rest of the key only breaks ties of gaps.
+  // Sorted through small keys (a hit is some 70 bytes), by the gap in linear time; the rest of the key
+  // only orders equal gaps.
   order_.clear();
   for (size_t c = 0; c < hits_.size(); ++c) {
     const Hit& hit = hits_[c];
@@ -727,10 +729,18 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     if (hit.candidate >= 0 && candidates_[static_cast<size_t>(hit.candidate)].suppressed) continue;
     order_.push_back({hit.gap, static_cast<int>(c)});
   }
-  std::sort(order_.begin(), order_.end(), [&](const HitKey& a, const HitKey& b) {
-    if (a.gap != b.gap) return a.gap < b.gap;
-    return before(hits_[static_cast<size_t>(a.index)], hits_[static_cast<size_t>(b.index)]);
-  });
+  radixSortByKey(order_, orderScratch_);
+  for (size_t first = 0; first < order_.size();) {
+    size_t last = first + 1;
+    while (last < order_.size() && order_[last].key == order_[first].key) ++last;
+    if (last - first > 1) {
+      std::sort(order_.begin() + static_cast<std::ptrdiff_t>(first), order_.begin() + static_cast<std::ptrdiff_t>(last),
+                [&](const KeyedIndex& a, const KeyedIndex& b) {
+                  return before(hits_[static_cast<size_t>(a.index)], hits_[static_cast<size_t>(b.index)]);
+                });
+    }
+    first = last;
+  }
   // The accepted ones are also kept ordered by (ropeA, ropeB, arcA), so each test looks only at those
   // within one spacing along A: O(c log c) instead of comparing every hit with every accepted one.
   const auto byArc = [](const Hit& x, const Hit& y) {

@@ -40,6 +40,7 @@
 #include "bullet_bridge/contact_report.h"
 #include "bullet_bridge/contact/contact_response.h"
 #include "bullet_bridge/contact/rope_stick_memory.h"
+#include "bullet_bridge/detail/radix_sort.h"
 #include "bullet_bridge/friction_combination.h"
 #include "rope/rod/coupled_solve.h"
 #include "rope/spline/bspline_curve.h"
@@ -130,11 +131,8 @@ class RopeRopeContacts {
     int candidate;      // its point contact in candidates_ once evaluated (two ropes: at once), else -1
   };
   std::vector<Hit> hits_;
-  struct HitKey {
-    double gap;
-    int index;  // into hits_
-  };
-  std::vector<HitKey> order_;   // the hits to thin, by (gap, ropeA, sA, ropeB, sB)
+  std::vector<KeyedIndex> order_;  // the hits to thin (gap, index into hits_), by (gap, ropeA, sA, ropeB, sB)
+  std::vector<KeyedIndex> orderScratch_;
   std::vector<int> waiting_;    // evaluated hits not yet accepted or dropped: a heap, during the thinning
   std::vector<int> keptByArc_;  // accepted hits ordered by (ropeA, ropeB, arcA), during the thinning
   std::vector<Candidate> kept_;

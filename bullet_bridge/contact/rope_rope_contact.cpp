@@ -743,16 +743,13 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   }
   // The accepted ones are also kept ordered by (ropeA, ropeB, arcA), so each test looks only at those
   // within one spacing along A: O(c log c) instead of comparing every hit with every accepted one.
-  const auto byArc = [](const Hit& x, const Hit& y) {
+  const auto byArc = [](const Accepted& x, const Accepted& y) {
     return std::tie(x.ropeA, x.ropeB, x.arcA) < std::tie(y.ropeA, y.ropeB, y.arcA);
   };
   const auto nearAccepted = [&](const Hit& hit) {
-    Hit from = hit;
-    from.arcA = hit.arcA - hit.spacing;
-    auto it = std::lower_bound(keptByArc_.begin(), keptByArc_.end(), from,
-                               [&](int x, const Hit& y) { return byArc(hits_[static_cast<size_t>(x)], y); });
-    for (; it != keptByArc_.end(); ++it) {
-      const Hit& other = hits_[static_cast<size_t>(*it)];
+    const Accepted from{hit.ropeA, hit.ropeB, hit.arcA - hit.spacing, hit.arcB};
+    for (auto it = std::lower_bound(keptByArc_.begin(), keptByArc_.end(), from, byArc); it != keptByArc_.end(); ++it) {
+      const Accepted& other = *it;
       if (other.ropeA != hit.ropeA || other.ropeB != hit.ropeB || !(other.arcA < hit.arcA + hit.spacing)) break;
       if (std::abs(other.arcA - hit.arcA) < hit.spacing && std::abs(other.arcB - hit.arcB) < hit.spacing) return true;
     }
@@ -787,9 +784,8 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
       continue;
     }
     kept_.push_back(candidates_[static_cast<size_t>(hit.candidate)]);
-    const auto at = std::upper_bound(keptByArc_.begin(), keptByArc_.end(), hit,
-                                     [&](const Hit& x, int y) { return byArc(x, hits_[static_cast<size_t>(y)]); });
-    keptByArc_.insert(at, index);
+    const Accepted accepted{hit.ropeA, hit.ropeB, hit.arcA, hit.arcB};
+    keptByArc_.insert(std::upper_bound(keptByArc_.begin(), keptByArc_.end(), accepted, byArc), accepted);
   }
   candidates_.swap(kept_);
   candidates_.insert(candidates_.end(), samples_.begin(), samples_.end());

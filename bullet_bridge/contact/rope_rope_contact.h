@@ -134,7 +134,11 @@ class RopeRopeContacts {
   std::vector<KeyedIndex> order_;  // the hits to thin (gap, index into hits_), by (gap, ropeA, sA, ropeB, sB)
   std::vector<KeyedIndex> orderScratch_;
   std::vector<int> waiting_;    // evaluated hits not yet accepted or dropped: a heap, during the thinning
-  std::vector<int> keptByArc_;  // accepted hits ordered by (ropeA, ropeB, arcA), during the thinning
+  struct Accepted {
+    int ropeA, ropeB;
+    double arcA, arcB;  // m of rest length
+  };
+  std::vector<Accepted> keptByArc_;  // the accepted hits by (ropeA, ropeB, arcA), during the thinning
   std::vector<Candidate> kept_;
   std::vector<CurvePoint> endCurve_;  // the curve at each capsule end of one rope, during prepare()
   std::vector<std::vector<double>> deviation_;  // per rope and capsule: bound of the axis's departure from the curve, m

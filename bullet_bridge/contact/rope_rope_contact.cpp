@@ -142,17 +142,14 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
     std::vector<AxisBox>& boxes = boxes_[r];
     ends.clear();
     boxes.clear();
-    deviation_[r].clear();
+    deviation_[r].clear();  // made by solve() for the ropes with self-contact hits only
     roundoff_[r] = 0.0;
     if (proxies.size() == 0) continue;  // no pair can name one of its capsules
     ends.resize(static_cast<size_t>(proxies.size()) + 1);
-    endCurve_.resize(static_cast<size_t>(proxies.size()) + 1);
     for (int i = 0; i <= proxies.size(); ++i) {
       const double s = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
       ends[static_cast<size_t>(i)] = {restArcAt(rod, restArc_[r], s), rod.velocity(s).norm()};
-      endCurve_[static_cast<size_t>(i)] = evaluateCurve(rod.knots(), rod.controlPoints(), s);
     }
-    boundAxisDeviation(rod, proxies, deviation_[r], roundoff_[r]);
     // Curvature vector of each capsule's stretch of curve (1/m, towards the centre of curvature), from
     // the turn of the chords on either side: what decides which rope a distributed contact samples.
     // Only two different ropes have distributed contacts (a lone rope's knot needs none).
@@ -188,7 +185,7 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
 }
 
 void RopeRopeContacts::boundAxisDeviation(const Rod& rod, const CapsuleProxies& proxies, std::vector<double>& deviation,
-                                          double& roundoff) const {
+                                          double& roundoff) {
   // Inside one knot span a curve of degree <= 3 is a cubic P(t) = C(s0 + t (s1 - s0)) on the capsule,
   // and its departure from the chord, delta(t) = P(t) - P(0) - t (P(1) - P(0)), vanishes at both ends:
   // delta(t) = t (1 - t) q(t) with q linear, q(0) = P'(0) - chord, q(1) = chord - P'(1). So
@@ -198,6 +195,11 @@ void RopeRopeContacts::boundAxisDeviation(const Rod& rod, const CapsuleProxies& 
   const KnotVector& knots = rod.knots();
   const int degree = knots.degree();
   const int count = proxies.size();
+  endCurve_.resize(static_cast<size_t>(count) + 1);
+  for (int i = 0; i <= count; ++i) {
+    const double s = i < count ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
+    endCurve_[static_cast<size_t>(i)] = evaluateCurve(knots, rod.controlPoints(), s);
+  }
   deviation.assign(static_cast<size_t>(count), std::numeric_limits<double>::infinity());
   double scale = 0.0;
   for (int i = 0; i < count; ++i) {
@@ -688,13 +690,15 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     if (self && std::abs(arcSA - arcSB) < exclusion) continue;
     if (cut != nullptr && std::abs(arcSA - cutArcA) + std::abs(arcSB - cutArcB) < exclusion) continue;
 
-    // Until evaluated on the curve, the gap's lower bound: the axes' gap less both axes' departure from
-    // the curve (boundAxisDeviation).
-    const double departure = deviation_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)] +
-                             deviation_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)] +
-                             roundoff_[static_cast<size_t>(pair.ropeA)] + roundoff_[static_cast<size_t>(pair.ropeB)];
-    Hit hit{closest.distance - radii - departure, pair.ropeA, sA, pair.ropeB, sB, arcSA, arcSB, radii, -1};
-    if (!self) {
+    Hit hit{closest.distance - radii, pair.ropeA, sA, pair.ropeB, sB, arcSA, arcSB, radii, -1};
+    if (self) {
+      // Until evaluated on the curve, the gap's lower bound: the axes' gap less both axes' departure
+      // from the curve (boundAxisDeviation, once per substep for a rope with self-contact hits).
+      std::vector<double>& deviation = deviation_[static_cast<size_t>(pair.ropeA)];
+      double& roundoff = roundoff_[static_cast<size_t>(pair.ropeA)];
+      if (deviation.empty()) boundAxisDeviation(rodA, ropeA.proxies(), deviation, roundoff);
+      hit.gap -= deviation[static_cast<size_t>(pair.capsuleA)] + deviation[static_cast<size_t>(pair.capsuleB)] + 2.0 * roundoff;
+    } else {
       // Two ropes: the curve now, for the touching stretch (which rope curves round the other).
       double centres = 0.0;
       candidates_.push_back(pointContact(rodA, rodB, hit, &centres));

@@ -95,6 +95,7 @@ set(SPLINEROPE_BULLET_BRIDGE_INTERNAL_HEADERS
   bullet_bridge/narrowphase/ray_capsule.h
   bullet_bridge/narrowphase/segment_triangle_distance.h
   bullet_bridge/contact/distributed_loads.h
+  bullet_bridge/contact/axis_departure.h
   bullet_bridge/detail/bullet_math.h
   bullet_bridge/detail/body_state.h
   bullet_bridge/detail/world_membership.h

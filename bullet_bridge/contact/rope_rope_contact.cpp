@@ -3,18 +3,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <queue>
 #include <tuple>
 
 #include <Eigen/Geometry>
 
+#include "bullet_bridge/contact/axis_departure.h"
 #include "bullet_bridge/contact/contact_response.h"
 #include "bullet_bridge/detail/radix_sort.h"
 #include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/narrowphase/segment_segment_distance.h"
 #include "rope/common/error.h"
-#include "rope/spline/bspline_curve.h"
 #include "rope/spline/gauss_legendre.h"
 
 namespace rope::bullet {
@@ -182,48 +180,6 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
       box.speed = std::max(ends[static_cast<size_t>(i)].speed, ends[static_cast<size_t>(i) + 1].speed);
     }
   }
-}
-
-void RopeRopeContacts::boundAxisDeviation(const Rod& rod, const CapsuleProxies& proxies, std::vector<double>& deviation,
-                                          double& roundoff) {
-  // Inside one knot span a curve of degree <= 3 is a cubic P(t) = C(s0 + t (s1 - s0)) on the capsule,
-  // and its departure from the chord, delta(t) = P(t) - P(0) - t (P(1) - P(0)), vanishes at both ends:
-  // delta(t) = t (1 - t) q(t) with q linear, q(0) = P'(0) - chord, q(1) = chord - P'(1). So
-  // |delta| <= max(|q(0)|, |q(1)|) / 4 everywhere on the capsule; the axis's ends may also differ from
-  // C(s0), C(s1) (btScalar rounding). Higher degrees, and a derivative that jumps at a knot of
-  // multiplicity >= degree, get no bound (infinity: every hit of such a capsule is evaluated).
-  const KnotVector& knots = rod.knots();
-  const int degree = knots.degree();
-  const int count = proxies.size();
-  endCurve_.resize(static_cast<size_t>(count) + 1);
-  for (int i = 0; i <= count; ++i) {
-    const double s = i < count ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
-    endCurve_[static_cast<size_t>(i)] = evaluateCurve(knots, rod.controlPoints(), s);
-  }
-  deviation.assign(static_cast<size_t>(count), std::numeric_limits<double>::infinity());
-  double scale = 0.0;
-  for (int i = 0; i < count; ++i) {
-    const Capsule capsule = proxies.capsule(i);
-    for (int k = 0; k < 3; ++k) {
-      scale = std::max({scale, std::abs(static_cast<double>(capsule.a[k])), std::abs(static_cast<double>(capsule.b[k]))});
-    }
-    if (degree > 3) continue;
-    const CapsuleProxy& proxy = proxies.proxy(i);
-    const CurvePoint& start = endCurve_[static_cast<size_t>(i)];
-    const CurvePoint& end = endCurve_[static_cast<size_t>(i) + 1];
-    // C' at s1 as evaluated comes from the span right of a knot there: the capsule's own only if C' is
-    // continuous at s1.
-    if (i + 1 < count && knots.multiplicity(proxy.s1) >= degree) continue;
-    const double width = proxy.s1 - proxy.s0;
-    const Vec3 chord = end.position - start.position;
-    const double bulge = 0.25 * std::max((width * start.firstDerivative - chord).norm(),
-                                         (chord - width * end.firstDerivative).norm());
-    const Vec3 a(capsule.a.x(), capsule.a.y(), capsule.a.z()), b(capsule.b.x(), capsule.b.y(), capsule.b.z());
-    const double axisEnds = std::max((a - start.position).norm(), (b - end.position).norm());
-    deviation[static_cast<size_t>(i)] = (bulge + axisEnds) * (1.0 + 1e-9);
-  }
-  // The rounding of the axes' distance (btScalar) and of the curve points (double), m.
-  roundoff = 16.0 * (static_cast<double>(std::numeric_limits<btScalar>::epsilon()) + 1e-16) * (1.0 + scale);
 }
 
 double RopeRopeContacts::reach(const RopeCapsulePair& pair) const {
@@ -693,10 +649,10 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     Hit hit{closest.distance - radii, pair.ropeA, sA, pair.ropeB, sB, arcSA, arcSB, radii, -1};
     if (self) {
       // Until evaluated on the curve, the gap's lower bound: the axes' gap less both axes' departure
-      // from the curve (boundAxisDeviation, once per substep for a rope with self-contact hits).
+      // from the curve (axis_departure.h; once per substep for a rope with self-contact hits).
       std::vector<double>& deviation = deviation_[static_cast<size_t>(pair.ropeA)];
       double& roundoff = roundoff_[static_cast<size_t>(pair.ropeA)];
-      if (deviation.empty()) boundAxisDeviation(rodA, ropeA.proxies(), deviation, roundoff);
+      if (deviation.empty()) boundAxisDeparture(rodA, ropeA.proxies(), endCurve_, deviation, roundoff);
       hit.gap -= deviation[static_cast<size_t>(pair.capsuleA)] + deviation[static_cast<size_t>(pair.capsuleB)] + 2.0 * roundoff;
     } else {
       // Two ropes: the curve now, for the touching stretch (which rope curves round the other).

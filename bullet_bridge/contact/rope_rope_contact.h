@@ -140,7 +140,7 @@ class RopeRopeContacts {
   };
   std::vector<Accepted> keptByArc_;  // the accepted hits by (ropeA, ropeB, arcA), during the thinning
   std::vector<Candidate> kept_;
-  std::vector<CurvePoint> endCurve_;  // scratch of boundAxisDeviation: the curve at each capsule end
+  std::vector<CurvePoint> endCurve_;  // scratch of boundAxisDeparture: the curve at each capsule end
   // Per rope (empty until a self-contact hit needs it) and capsule: bound of the axis's departure from
   // the curve, m; per rope: bound of the rounding of a distance of axis points, m.
   std::vector<std::vector<double>> deviation_;
@@ -178,10 +178,6 @@ class RopeRopeContacts {
   // A contact of C_A(sA) with C_B(sB), centres m apart along normal (from B into A), not yet acting.
   static Candidate contactBetween(int ropeA, double sA, double arcA, int ropeB, double sB, double arcB, double radii,
                                   double centres, const Vec3& normal);
-  // deviation[i]: a bound of the distance of capsule i's axis point at t from C(s0 + t (s1 - s0)), m;
-  // roundoff: of the rounding in a distance of axis points (btScalar), m.
-  void boundAxisDeviation(const Rod& rod, const CapsuleProxies& proxies, std::vector<double>& deviation,
-                          double& roundoff);
   // The point contact of a hit, on the curves at the ropes' state before the step; centresOut (if
   // given): the distance of the curve points, m.
   static Candidate pointContact(const Rod& rodA, const Rod& rodB, const Hit& hit, double* centresOut = nullptr);

@@ -47,7 +47,6 @@
 
 namespace rope::bullet {
 
-class CapsuleProxies;
 class RopeObject;
 
 // A broadphase pair of rope capsules, ordered: ropeA < ropeB, or capsuleA < capsuleB on one rope.

@@ -140,8 +140,9 @@ void CapsuleProxies::placeCapsule(int i) {
 
 void CapsuleProxies::rebuild(const Rod& rod) {
   capsuleEnds(rod.knots(), rod.beginParameter(), rod.endParameter(), capsulesPerSpan_, ends_);  // no allocation in a steady state
+  rod.positionsAt(ends_, points_);  // sorted: no span search
   axis_.resize(ends_.size());
-  for (std::size_t i = 0; i < ends_.size(); ++i) axis_[i] = toBullet(rod.position(ends_[i]));
+  for (std::size_t i = 0; i < ends_.size(); ++i) axis_[i] = toBullet(points_[i]);
   resize(static_cast<int>(ends_.size()) - 1);
 }
 
@@ -204,17 +205,23 @@ int CapsuleProxies::fitBoxes(const Rod& rod, double predictionTime, double margi
   queryPad_ = static_cast<btScalar>(std::max(0.0, margin - kRopeReachShare * static_cast<double>(radius_)));
   int overflows = 0;
   // Each end is shared by two capsules: its speed once.
+  rod.velocitiesAt(ends_, points_);
   speeds_.resize(ends_.size());
-  for (std::size_t i = 0; i < ends_.size(); ++i) speeds_[i] = rod.velocity(ends_[i]).norm();
+  for (std::size_t i = 0; i < ends_.size(); ++i) speeds_[i] = points_[i].norm();
+  middles_.resize(static_cast<std::size_t>(size()));
+  for (int i = 0; i < size(); ++i) {
+    const CapsuleProxy& proxy = proxies_[static_cast<std::size_t>(i)];
+    middles_[static_cast<std::size_t>(i)] = 0.5 * (proxy.s0 + proxy.s1);
+  }
+  rod.positionsAt(middles_, points_);
   for (int i = 0; i < size(); ++i) {
     // The compound's children follow here, not in every rebuild: only Bullet's queries read them,
     // between steps (4 % of a 1000-rope step when placed twice per substep).
     placeCapsule(i);
-    const CapsuleProxy& proxy = proxies_[static_cast<std::size_t>(i)];
     const btVector3& a = axis_[static_cast<std::size_t>(i)];
     const btVector3& b = axis_[static_cast<std::size_t>(i) + 1];
-    // How far the curve bulges out of the chord: its midpoint's distance from the chord's midpoint.
-    const btScalar bulge = (toBullet(rod.position(0.5 * (proxy.s0 + proxy.s1))) - (a + b) * btScalar(0.5)).length();
+    // How far the curve bulges out of the chord: its middle point's (points_) distance from the chord's midpoint.
+    const btScalar bulge = (toBullet(points_[static_cast<std::size_t>(i)]) - (a + b) * btScalar(0.5)).length();
     // How far the capsule can move in the step, in any direction (the body and rope-rope midphase
     // test the chord's box grown by it: body_contacts.cpp, rope_rope_contact.cpp).
     const double reach = predictionTime * std::max(speeds_[static_cast<std::size_t>(i)], speeds_[static_cast<std::size_t>(i) + 1]);

@@ -149,6 +149,8 @@ class CapsuleProxies {
   std::vector<btVector3> axis_;  // size() + 1 axis points at the last rebuild
   std::vector<double> ends_;     // scratch of rebuild: the capsule ends' curve parameters
   std::vector<double> speeds_;   // scratch of updateBoxes: |C'(s)| at each capsule end, m/s
+  std::vector<double> middles_;  // scratch of updateBoxes: each capsule's middle parameter
+  PointList points_;             // scratch: curve points or velocities at ends_ or middles_
   std::vector<std::unique_ptr<RopeCapsuleShape>> capsuleShapes_;
   std::unique_ptr<RopeShape> shape_;
   std::unique_ptr<btCollisionObject> object_;

@@ -155,6 +155,8 @@ void Rod::validateParameter(double s) const {
 
 Vec3 Rod::position(double s) const { return curvePosition(knots_, points_, s); }
 Vec3 Rod::velocity(double s) const { return curvePosition(knots_, velocities_, s); }
+void Rod::positionsAt(const std::vector<double>& s, PointList& out) const { curvePositions(knots_, points_, s, out); }
+void Rod::velocitiesAt(const std::vector<double>& s, PointList& out) const { curvePositions(knots_, velocities_, s, out); }
 
 Vec3 Rod::tangent(double s) const {
   const Vec3 derivative = evaluateCurve(knots_, points_, s).firstDerivative;

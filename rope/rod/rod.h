@@ -133,6 +133,10 @@ class Rod {
   // Throw InvalidArgument("s", ...) outside [beginParameter, endParameter] or NaN.
   Vec3 position(double s) const;
   Vec3 velocity(double s) const;
+  // position / velocity at every s[i], into out (resized): the same values, without a span search for
+  // sorted parameters. Throw InvalidArgument("s[i]", ...) like position, before writing anything.
+  void positionsAt(const std::vector<double>& s, PointList& out) const;
+  void velocitiesAt(const std::vector<double>& s, PointList& out) const;
   Vec3 tangent(double s) const;  // unit tangent (zero vector where C'(s) = 0)
   double length() const;         // current arc length, m
   double restLength() const;     // m

@@ -127,15 +127,19 @@ void BSplineCurve::evaluate(const std::vector<double>& s, std::vector<CurvePoint
 }
 
 void BSplineCurve::positions(const std::vector<double>& s, PointList& out) const {
-  checkParameters(knots_, s);
+  curvePositions(knots_, points_, s, out);
+}
+
+void curvePositions(const KnotVector& knots, const PointList& points, const std::vector<double>& s, PointList& out) {
+  checkParameters(knots, s);
   out.resize(s.size());
   BasisValues basis;
   CurvePoint point;
   int span = -1;
   for (size_t i = 0; i < s.size(); ++i) {
-    span = spanNear(knots_, span, s[i]);
-    evaluateBasis(knots_, span, s[i], 0, basis);
-    accumulate<0>(basis, points_, point);
+    span = spanNear(knots, span, s[i]);
+    evaluateBasis(knots, span, s[i], 0, basis);
+    accumulate<0>(basis, points, point);
     out[i] = point.position;
   }
 }

@@ -22,6 +22,10 @@ struct CurvePoint {
 // They validate s (InvalidArgument "s") but assume points.size() == knots.controlPointCount().
 CurvePoint evaluateCurve(const KnotVector& knots, const PointList& points, double s);
 Vec3 curvePosition(const KnotVector& knots, const PointList& points, double s);
+// curvePosition at every s[i], into out (resized): bitwise the same values, but sorted parameters
+// reuse the previous span instead of searching (any order is correct). Every s is validated
+// (InvalidArgument "s[i]") before anything is written.
+void curvePositions(const KnotVector& knots, const PointList& points, const std::vector<double>& s, PointList& out);
 
 class BSplineCurve {
  public:

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -55,6 +56,42 @@ TEST(Rod, FromSegmentIsStraightWithTheRightMaterial) {
   EXPECT_NEAR(rod.stretchingEnergy(), ea / 8.0 * std::pow(1.21 - 1.0, 2) * 2.0, 1e-10);
   // Gravity energy: -m g . centre of mass.
   EXPECT_NEAR(rod.gravityEnergy(), 0.2 * 9.81 * 1.0, 1e-12);
+}
+
+TEST(Rod, BatchEvaluationIsBitwiseThePointwiseOneAndValidatesFirst) {
+  PointList bent;
+  for (int i = 0; i < 9; ++i) bent.emplace_back(0.1 * i, 0.05 * std::sin(1.3 * i), 0.02 * i * i);
+  Rod rod = Rod::fromPolyline(softSettings(), bent);
+  rod.insertKnot(rod.beginParameter() + 0.31 * (rod.endParameter() - rod.beginParameter()));
+  PointList velocities;
+  for (int i = 0; i < rod.controlPointCount(); ++i) velocities.emplace_back(0.3 * i, -0.2, 0.1 * i);
+  rod.setVelocities(velocities);
+  // Sorted (span reuse), with every knot and both ends among them, then one out of order.
+  std::vector<double> s;
+  for (int k = 0; k < 40; ++k) s.push_back(rod.beginParameter() + k * (rod.endParameter() - rod.beginParameter()) / 40);
+  s.push_back(rod.endParameter());
+  for (int k = rod.degree() + 1; k < rod.controlPointCount(); ++k) s.push_back(rod.knots()[k]);
+  std::sort(s.begin(), s.end());
+  s.push_back(s[3]);
+  PointList positions, velocitiesAt;
+  rod.positionsAt(s, positions);
+  rod.velocitiesAt(s, velocitiesAt);
+  ASSERT_EQ(positions.size(), s.size());
+  ASSERT_EQ(velocitiesAt.size(), s.size());
+  for (size_t i = 0; i < s.size(); ++i) {
+    EXPECT_EQ(positions[i], rod.position(s[i])) << "s = " << s[i];
+    EXPECT_EQ(velocitiesAt[i], rod.velocity(s[i])) << "s = " << s[i];
+  }
+  // Everything is validated before anything is written.
+  PointList untouched(2, Vec3(7, 7, 7));
+  try {
+    rod.positionsAt(std::vector<double>{rod.beginParameter(), kNaN}, untouched);
+    ADD_FAILURE() << "a NaN parameter was accepted";
+  } catch (const InvalidArgument& error) {
+    EXPECT_EQ(error.parameter(), "s[1]");
+  }
+  EXPECT_THROW(rod.velocitiesAt(std::vector<double>{rod.endParameter() + 1.0}, untouched), InvalidArgument);
+  EXPECT_EQ(untouched, PointList(2, Vec3(7, 7, 7)));
 }
 
 TEST(Rod, PolylineRopeCanBeCreatedBentAndSlack) {

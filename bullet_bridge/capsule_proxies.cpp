@@ -141,6 +141,7 @@ void CapsuleProxies::placeCapsule(int i) {
 void CapsuleProxies::rebuild(const Rod& rod) {
   capsuleEnds(rod.knots(), rod.beginParameter(), rod.endParameter(), capsulesPerSpan_, ends_);  // no allocation in a steady state
   rod.positionsAt(ends_, points_);  // sorted: no span search
+  speedsCurrent_ = false;
   axis_.resize(ends_.size());
   for (std::size_t i = 0; i < ends_.size(); ++i) axis_[i] = toBullet(points_[i]);
   resize(static_cast<int>(ends_.size()) - 1);
@@ -153,6 +154,7 @@ void CapsuleProxies::rebuild(const std::vector<double>& ends, const std::vector<
   }
   ends_ = ends;
   axis_ = axis;
+  speedsCurrent_ = false;
   resize(static_cast<int>(ends_.size()) - 1);
 }
 
@@ -204,10 +206,7 @@ int CapsuleProxies::fitBoxes(const Rod& rod, double predictionTime, double margi
   // body queries and the broadphase box add (queryPad_).
   queryPad_ = static_cast<btScalar>(std::max(0.0, margin - kRopeReachShare * static_cast<double>(radius_)));
   int overflows = 0;
-  // Each end is shared by two capsules: its speed once.
-  rod.velocitiesAt(ends_, points_);
-  speeds_.resize(ends_.size());
-  for (std::size_t i = 0; i < ends_.size(); ++i) speeds_[i] = points_[i].norm();
+  endSpeeds(rod);  // each end is shared by two capsules: its speed once
   middles_.resize(static_cast<std::size_t>(size()));
   for (int i = 0; i < size(); ++i) {
     const CapsuleProxy& proxy = proxies_[static_cast<std::size_t>(i)];
@@ -235,6 +234,15 @@ int CapsuleProxies::fitBoxes(const Rod& rod, double predictionTime, double margi
   }
   if (shape_->getDynamicAabbTree()->m_root == nullptr) return overflows;
   return setObjectBox() ? overflows : size();
+}
+
+const std::vector<double>& CapsuleProxies::endSpeeds(const Rod& rod) const {
+  if (speedsCurrent_) return speeds_;
+  rod.velocitiesAt(ends_, velocities_);  // sorted: no span search
+  speeds_.resize(ends_.size());
+  for (std::size_t i = 0; i < ends_.size(); ++i) speeds_[i] = velocities_[i].norm();
+  speedsCurrent_ = true;
+  return speeds_;
 }
 
 bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {

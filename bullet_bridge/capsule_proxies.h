@@ -114,6 +114,11 @@ class CapsuleProxies {
   const CapsuleProxy& proxy(int i) const { return proxies_[static_cast<std::size_t>(i)]; }
   // Capsule i at the rod state of the last rebuild, world frame.
   Capsule capsule(int i) const;
+  // The speed |C'(s)| (m/s) at each capsule end, size() + 1 values in rope order, for `rod`: the rod
+  // the proxies were last rebuilt from, its state unchanged since. Evaluated once per rebuild (in one
+  // sorted batch) and shared by everything that reads it in the substep: the leaves' sweep
+  // (updateBoxes), the body contacts' reach and the rope-rope contacts' (contact/).
+  const std::vector<double>& endSpeeds(const Rod& rod) const;
   // The curve parameter of the point of capsule i's axis nearest to `point` (world frame).
   double parameterNear(int i, const btVector3& point) const;
 
@@ -148,7 +153,9 @@ class CapsuleProxies {
   std::vector<CapsuleProxy> proxies_;
   std::vector<btVector3> axis_;  // size() + 1 axis points at the last rebuild
   std::vector<double> ends_;     // scratch of rebuild: the capsule ends' curve parameters
-  std::vector<double> speeds_;   // scratch of updateBoxes: |C'(s)| at each capsule end, m/s
+  mutable std::vector<double> speeds_;  // endSpeeds: |C'(s)| at each capsule end, m/s
+  mutable bool speedsCurrent_ = false;  // speeds_ belong to the last rebuild
+  mutable PointList velocities_;        // scratch of endSpeeds
   std::vector<double> middles_;  // scratch of updateBoxes: each capsule's middle parameter
   PointList points_;             // scratch: curve points or velocities at ends_ or middles_
   std::vector<std::unique_ptr<RopeCapsuleShape>> capsuleShapes_;

@@ -141,12 +141,13 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
   const btScalar grow = static_cast<btScalar>(bodyReach);
   const btVector3 bodyGrow(grow, grow, grow);
   proxies.capsulesOverlapping(handle->m_aabbMin - bodyGrow, handle->m_aabbMax + bodyGrow, nearCapsules_, treeStack_);
+  const std::vector<double>* speeds = nearCapsules_.empty() ? nullptr : &proxies.endSpeeds(rod);
   for (const int i : nearCapsules_) {
     const Capsule capsule = proxies.capsule(i);
     const CapsuleProxy& proxy = proxies.proxy(i);
     // Speculative distance: the configured margin plus what rope and body can close in this step,
     // so a fast rope meets a thin plate before it has passed it.
-    const double ropeReach = h * std::max(rod.velocity(proxy.s0).norm(), rod.velocity(proxy.s1).norm());
+    const double ropeReach = h * std::max((*speeds)[static_cast<std::size_t>(i)], (*speeds)[static_cast<std::size_t>(i) + 1]);
     const double reach = margin + ropeReach + bodyReach;
     const btScalar grow = static_cast<btScalar>(radius + reach);
     btVector3 lo = capsule.a, hi = capsule.a;

@@ -144,14 +144,10 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
     roundoff_[r] = 0.0;
     if (proxies.size() == 0) continue;  // no pair can name one of its capsules
     ends.resize(static_cast<size_t>(proxies.size()) + 1);
-    endParameters_.resize(static_cast<size_t>(proxies.size()) + 1);
+    const std::vector<double>& speeds = proxies.endSpeeds(rod);  // the body contacts' too
     for (int i = 0; i <= proxies.size(); ++i) {
-      endParameters_[static_cast<size_t>(i)] = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
-    }
-    rod.velocitiesAt(endParameters_, endVelocities_);  // sorted: no span search
-    for (int i = 0; i <= proxies.size(); ++i) {
-      const double s = endParameters_[static_cast<size_t>(i)];
-      ends[static_cast<size_t>(i)] = {restArcAt(rod, restArc_[r], s), endVelocities_[static_cast<size_t>(i)].norm()};
+      const double s = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
+      ends[static_cast<size_t>(i)] = {restArcAt(rod, restArc_[r], s), speeds[static_cast<size_t>(i)]};
     }
     // Curvature vector of each capsule's stretch of curve (1/m, towards the centre of curvature), from
     // the turn of the chords on either side: what decides which rope a distributed contact samples.

@@ -140,8 +140,6 @@ class RopeRopeContacts {
   std::vector<Accepted> keptByArc_;  // the accepted hits by (ropeA, ropeB, arcA), during the thinning
   std::vector<Candidate> kept_;
   std::vector<CurvePoint> endCurve_;  // scratch of boundAxisDeparture: the curve at each capsule end
-  std::vector<double> endParameters_;  // scratch of prepare: one rope's capsule ends
-  PointList endVelocities_;            // scratch of prepare: the velocity there, m/s
   // Per rope (empty until a self-contact hit needs it) and capsule: bound of the axis's departure from
   // the curve, m; per rope: bound of the rounding of a distance of axis points, m.
   std::vector<std::vector<double>> deviation_;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "render/primitive_mesh.h"
 #include "rope/common/error.h"
@@ -106,10 +107,15 @@ KnotRegion knotRegion(const bullet::RopeObject& rope, const bullet::ContactRepor
   const Rod& rod = rope.rod();
   region.length = arcLength(rod.knots(), rod.controlPoints(), region.begin, region.end);
   constexpr int kSamples = 200;
-  Vec3 lo = rod.position(region.begin), hi = lo;
+  std::vector<double> samples(kSamples + 1);
+  samples[0] = region.begin;
   for (int i = 1; i <= kSamples; ++i) {
-    const double s = std::min(region.end, region.begin + (region.end - region.begin) * i / kSamples);
-    const Vec3 p = rod.position(s);
+    samples[static_cast<size_t>(i)] = std::min(region.end, region.begin + (region.end - region.begin) * i / kSamples);
+  }
+  PointList points;
+  rod.positionsAt(samples, points);  // ascending: one pass along the knot spans
+  Vec3 lo = points[0], hi = lo;
+  for (const Vec3& p : points) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }

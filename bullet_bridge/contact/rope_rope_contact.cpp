@@ -647,7 +647,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     if (self && std::abs(arcSA - arcSB) < exclusion) continue;
     if (cut != nullptr && std::abs(arcSA - cutArcA) + std::abs(arcSB - cutArcB) < exclusion) continue;
 
-    Hit hit{closest.distance - radii, pair.ropeA, sA, pair.ropeB, sB, arcSA, arcSB, radii, -1};
+    Hit hit{closest.distance - radii, sA, sB, arcSA, arcSB, radii, pair.ropeA, pair.ropeB, -1};
     if (self) {
       // Until evaluated on the curve, the gap's lower bound: the axes' gap less both axes' departure
       // from the curve (axis_departure.h; once per substep for a rope with self-contact hits).
@@ -704,8 +704,11 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   }
   // The accepted ones are also kept ordered by (ropeA, ropeB, arcA), so each test looks only at those
   // within one spacing along A: O(c log c) instead of comparing every hit with every accepted one.
+  // (Spelled out: std::tie compares each member twice, and this runs some 5 times per hit.)
   const auto byArc = [](const Accepted& x, const Accepted& y) {
-    return std::tie(x.ropeA, x.ropeB, x.arcA) < std::tie(y.ropeA, y.ropeB, y.arcA);
+    if (x.ropeA != y.ropeA) return x.ropeA < y.ropeA;
+    if (x.ropeB != y.ropeB) return x.ropeB < y.ropeB;
+    return x.arcA < y.arcA;
   };
   const auto nearAccepted = [&](const Hit& hit) {
     const Accepted from{hit.ropeA, hit.ropeB, hit.arcA - hit.spacing, hit.arcB};

@@ -119,14 +119,12 @@ class RopeRopeContacts {
   std::vector<std::vector<Vec3>> bends_;  // per rope: curvature vector of each capsule, 1/m
   std::vector<Candidate> candidates_;
   // A capsule pair within reach, before the thinning: its axes' closest points as curve parameters.
-  struct Hit {
+  struct Hit {  // 64 bytes: the doubles first, no padding between the ints
     double gap;         // m, < 0 overlapping: on the curve once evaluated (candidate >= 0), else a lower bound
-    int ropeA;
-    double sA;
-    int ropeB;
-    double sB;
+    double sA, sB;
     double arcA, arcB;  // rest arclength of sA, sB, m
     double spacing;     // m of rest length: closer hits are the same contact
+    int ropeA, ropeB;
     int candidate;      // its point contact in candidates_ once evaluated (two ropes: at once), else -1
   };
   std::vector<Hit> hits_;

@@ -94,6 +94,34 @@ TEST(CapsuleProxies, SweptBoxesCoverStartAndPredictedEnd) {
   EXPECT_EQ(CapsuleProxies::ropeOf(rope.collisionObject()), &rope);
 }
 
+TEST(CapsuleProxies, EndSpeedsAreTheCurveSpeedsAtTheCapsuleEndsOfTheLastRebuild) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  RopeObject rope(Rod::fromSegment(straightRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)));
+  physics.ropes().addRope(rope);
+  const double h = 1.0 / 240.0;
+  // Two different motions, one per step: a spin about the rope's middle (speed grows along it), then
+  // a slide along -y whose speed falls along it. The speeds must follow each step's rebuild.
+  const Vec3 spin(0.0, 0.0, 3.0), middle(0.5, 1.0, 0.0);
+  for (int motion = 0; motion < 2; ++motion) {
+    Rod& rod = rope.rod();
+    PointList velocities;
+    for (const Vec3& p : rod.controlPoints()) {
+      velocities.push_back(motion == 0 ? Vec3(spin.cross(p - middle)) : Vec3(0.0, -(2.0 - p.x()), 0.0));
+    }
+    rod.setVelocities(velocities);
+    physics.world().stepSimulation(btScalar(h), 1, btScalar(h));
+    const CapsuleProxies& proxies = rope.proxies();
+    const std::vector<double>& speeds = proxies.endSpeeds(rope.rod());
+    ASSERT_EQ(speeds.size(), static_cast<std::size_t>(proxies.size()) + 1);
+    for (int i = 0; i <= proxies.size(); ++i) {
+      const double s = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
+      EXPECT_EQ(speeds[static_cast<std::size_t>(i)], rope.rod().velocity(s).norm()) << "motion " << motion << ", end " << i;
+    }
+    // Asked again without a rebuild: the same values (the same vector).
+    EXPECT_EQ(&proxies.endSpeeds(rope.rod()), &speeds);
+  }
+}
+
 TEST(CapsuleProxies, HugeBoxesAreReportedNotHandedToBullet) {
   demos::PhysicsWorld physics(btVector3(0, 0, 0));
   RopeObject rope(Rod::fromSegment(straightRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)));

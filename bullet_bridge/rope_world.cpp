@@ -15,6 +15,7 @@
 #include "bullet_bridge/detail/body_state.h"
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/detail/guarded_call.h"
+#include "bullet_bridge/detail/tree_pairs.h"
 #include "bullet_bridge/kinematic_rope.h"
 #include "bullet_bridge/rope_debug_draw.h"
 #include "rope/common/error.h"
@@ -336,29 +337,22 @@ bool RopeWorld::collideSelf(const RopeObject& rope) {
 }
 
 void RopeWorld::collideTrees(const RopeObject& a, const RopeObject& b) {
-  struct Collector : btDbvt::ICollide {
-    void Process(const btDbvtNode* leaf0, const btDbvtNode* leaf1) override {
-      int capsule0 = leaf0->dataAsInt, capsule1 = leaf1->dataAsInt;
-      if (self) {
-        // Neighbouring capsules of one rope always overlap and are never a contact.
-        if (std::abs(capsule0 - capsule1) <= 1) return;
-        if (capsule1 < capsule0) std::swap(capsule0, capsule1);
-      }
-      pairs->push_back(RopeCapsulePair{rope0, capsule0, rope1, capsule1});
-    }
-    std::vector<RopeCapsulePair>* pairs = nullptr;
-    int rope0 = 0, rope1 = 0;
-    bool self = false;
-  };
   const bool swap = b.worldIndex_ < a.worldIndex_;
   const RopeObject& first = swap ? b : a;
   const RopeObject& second = swap ? a : b;
-  Collector collector;
-  collector.pairs = &capsulePairs_;
-  collector.rope0 = first.worldIndex_;
-  collector.rope1 = second.worldIndex_;
-  collector.self = &first == &second;
-  scratchTree_.collideTTpersistentStack(first.proxies().tree().m_root, second.proxies().tree().m_root, collector);
+  const int rope0 = first.worldIndex_, rope1 = second.worldIndex_;
+  const bool self = &first == &second;
+  // The pairs' order is the walk's; sortCapsulePairs orders them before anything depends on it.
+  overlappingLeafPairs(first.proxies().tree().m_root, second.proxies().tree().m_root, treeStack_,
+                       [&](const btDbvtNode* leaf0, const btDbvtNode* leaf1) {
+                         int capsule0 = leaf0->dataAsInt, capsule1 = leaf1->dataAsInt;
+                         if (self) {
+                           // Neighbouring capsules of one rope always overlap and are never a contact.
+                           if (std::abs(capsule0 - capsule1) <= 1) return;
+                           if (capsule1 < capsule0) std::swap(capsule0, capsule1);
+                         }
+                         capsulePairs_.push_back(RopeCapsulePair{rope0, capsule0, rope1, capsule1});
+                       });
 }
 
 void RopeWorld::addFastBodies(double h) {

@@ -41,6 +41,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bullet_bridge/bullet_precision.h"
@@ -127,7 +128,7 @@ class RopeWorld {
   std::unique_ptr<RopeDispatch> dispatch_;
   RopePairs ropePairs_;  // filled by Bullet's dispatch (collision_object/rope_dispatch.h)
   std::unique_ptr<Action> action_;
-  btDbvt scratchTree_;  // its traversal stack serves the tree-tree tests
+  std::vector<std::pair<const btDbvtNode*, const btDbvtNode*>> treeStack_;  // scratch of the tree-tree walks
   std::vector<std::pair<RopeObject*, RopeObject*>> ropeRopePairs_;  // scratch
   std::vector<RopeObject*> ropes_;
   std::vector<std::vector<const btCollisionObject*>> candidates_;  // per rope, scratch

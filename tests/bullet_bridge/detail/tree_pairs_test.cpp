@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: MIT
+// The tree-tree walk (bullet_bridge/detail/tree_pairs.h) reports exactly the leaf pairs of Bullet's
+// own btDbvt::collideTT, for two trees and for a tree with itself, on chains of boxes like a rope's
+// (neighbours overlap, some touch exactly) after updates and removals, and none for a NaN box.
+#include "bullet_bridge/detail/tree_pairs.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+#include <random>
+#include <utility>
+#include <vector>
+
+namespace rope::bullet {
+namespace {
+
+using LeafPairs = std::vector<std::pair<int, int>>;
+
+// A random walk of boxes, like a rope's capsule leaves: each next to the one before, so neighbours
+// overlap, and the walk folds back on itself, so distant ones do too. Every fifth box is moved to
+// touch its predecessor exactly (a shared face), the case the closed test must count.
+std::vector<btDbvtNode*> buildChain(btDbvt& tree, std::mt19937_64& random, int count, double offset) {
+  std::uniform_real_distribution<double> step(-0.004, 0.004);
+  std::vector<btDbvtNode*> leaves;
+  btVector3 centre(static_cast<btScalar>(offset), 0, 0);
+  btVector3 previousHigh(0, 0, 0);
+  for (int i = 0; i < count; ++i) {
+    centre += btVector3(static_cast<btScalar>(step(random)), static_cast<btScalar>(step(random)),
+                        static_cast<btScalar>(step(random)));
+    const btVector3 half(btScalar(0.003), btScalar(0.002), btScalar(0.0025));
+    btVector3 low = centre - half, high = centre + half;
+    if (i > 0 && i % 5 == 0) {
+      const btScalar shift = previousHigh.x() - low.x();  // low.x onto the last box's high.x
+      low.setX(low.x() + shift);
+      high.setX(high.x() + shift);
+    }
+    previousHigh = high;
+    leaves.push_back(tree.insert(btDbvtVolume::FromMM(low, high), reinterpret_cast<void*>(static_cast<std::size_t>(i))));
+    leaves.back()->dataAsInt = i;
+  }
+  return leaves;
+}
+
+LeafPairs bulletPairs(btDbvt& tree0, const btDbvt& tree1, bool self) {
+  struct Collect : btDbvt::ICollide {
+    void Process(const btDbvtNode* a, const btDbvtNode* b) override { out->emplace_back(a->dataAsInt, b->dataAsInt); }
+    LeafPairs* out = nullptr;
+  } collect;
+  LeafPairs pairs;
+  collect.out = &pairs;
+  tree0.collideTTpersistentStack(tree0.m_root, self ? tree0.m_root : tree1.m_root, collect);
+  return pairs;
+}
+
+LeafPairs walkPairs(const btDbvt& tree0, const btDbvt& tree1, bool self, std::vector<DbvtNodePair>& stack) {
+  LeafPairs pairs;
+  overlappingLeafPairs(tree0.m_root, self ? tree0.m_root : tree1.m_root, stack,
+                       [&](const btDbvtNode* a, const btDbvtNode* b) { pairs.emplace_back(a->dataAsInt, b->dataAsInt); });
+  return pairs;
+}
+
+// The same unordered pairs (self) or ordered pairs (two trees), each once.
+void expectSamePairs(LeafPairs walked, LeafPairs expected, bool self) {
+  if (self) {
+    for (auto* list : {&walked, &expected})
+      for (auto& [a, b] : *list)
+        if (b < a) std::swap(a, b);
+  }
+  std::sort(walked.begin(), walked.end());
+  std::sort(expected.begin(), expected.end());
+  EXPECT_TRUE(std::adjacent_find(walked.begin(), walked.end()) == walked.end()) << "a pair reported twice";
+  EXPECT_EQ(walked, expected);
+}
+
+TEST(TreePairs, SameLeafPairsAsBulletsCollideTTForATreeWithItselfAndForTwoTrees) {
+  std::mt19937_64 random(20261205);
+  btDbvt first, second;
+  std::vector<btDbvtNode*> leaves0 = buildChain(first, random, 260, 0.0);
+  std::mt19937_64 sameWalk(20261205);
+  buildChain(second, sameWalk, 120, 0.002);  // along the first one's first 120 boxes, 2 mm aside
+  std::vector<DbvtNodePair> stack;
+  std::size_t selfPairs = 0, crossPairs = 0;
+  std::uniform_real_distribution<double> nudge(-0.002, 0.002);
+  for (int round = 0; round < 4; ++round) {
+    const LeafPairs self = bulletPairs(first, first, true);
+    const LeafPairs cross = bulletPairs(first, second, false);
+    expectSamePairs(walkPairs(first, first, true, stack), self, true);
+    expectSamePairs(walkPairs(first, second, false, stack), cross, false);
+    selfPairs += self.size();
+    crossPairs += cross.size();
+    // Move a third of the leaves (the tree's shape changes as in a refit) and go again.
+    for (std::size_t i = 0; i < leaves0.size(); i += 3) {
+      btDbvtVolume volume = leaves0[i]->volume;
+      const btVector3 move(static_cast<btScalar>(nudge(random)), static_cast<btScalar>(nudge(random)), 0);
+      volume = btDbvtVolume::FromMM(volume.Mins() + move, volume.Maxs() + move);
+      first.update(leaves0[i], volume);
+    }
+  }
+  // Not a vacuous comparison: both kinds of pair occur, many times.
+  EXPECT_GT(selfPairs, 1000u);
+  EXPECT_GT(crossPairs, 100u);
+}
+
+TEST(TreePairs, NullAndSingleLeafTreesGiveNoPairsAndANaNBoxMeetsNothing) {
+  std::vector<DbvtNodePair> stack;
+  btDbvt empty, one;
+  const btDbvtNode* leaf = one.insert(btDbvtVolume::FromMM(btVector3(0, 0, 0), btVector3(1, 1, 1)), nullptr);
+  EXPECT_TRUE(walkPairs(empty, one, false, stack).empty());
+  EXPECT_TRUE(walkPairs(one, one, true, stack).empty());  // a leaf is never paired with itself
+  // Two identical boxes meet; with a NaN coordinate they do not (as btDbvt's Intersect).
+  const btDbvtVolume box = btDbvtVolume::FromMM(btVector3(0, 0, 0), btVector3(1, 1, 1));
+  EXPECT_TRUE(boxesMeet(box, box));
+  EXPECT_TRUE(boxesMeet(box, btDbvtVolume::FromMM(btVector3(1, 1, 1), btVector3(2, 2, 2))));  // touching corner
+  EXPECT_FALSE(boxesMeet(box, btDbvtVolume::FromMM(btVector3(1.0001, 0, 0), btVector3(2, 1, 1))));
+  const btScalar nan = std::numeric_limits<btScalar>::quiet_NaN();
+  EXPECT_FALSE(boxesMeet(box, btDbvtVolume::FromMM(btVector3(nan, 0, 0), btVector3(1, 1, 1))));
+  EXPECT_FALSE(boxesMeet(btDbvtVolume::FromMM(btVector3(0, 0, 0), btVector3(1, nan, 1)), box));
+  EXPECT_EQ(leaf->volume.Mins().x(), 0);
+}
+
+}  // namespace
+}  // namespace rope::bullet

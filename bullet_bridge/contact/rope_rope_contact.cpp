@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <tuple>
 
 #include <Eigen/Geometry>
@@ -200,12 +201,14 @@ bool RopeRopeContacts::mayTouch(const RopeCapsulePair& pair) const {
   const bool self = pair.ropeA == pair.ropeB;
   if (self && !ropeA.selfContact) return false;
   if (pair.capsuleA >= ropeA.capsules || pair.capsuleB >= ropeB.capsules) return false;
+  // Self-pairs whose every point pair is excluded (neighbouring capsules, which always overlap): two
+  // thirds of a knot's pairs, in no order a branch predictor could follow, so the tests below are
+  // combined without branching (and dropDistantPairs keeps pairs without branching either).
+  bool apart = true;
   if (self) {
-    // Pairs whose every point pair is excluded (neighbouring capsules, which always overlap).
     const CapsuleEnd* endsA = &ends_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)];
     const CapsuleEnd* endsB = &ends_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)];
-    if (std::max(std::abs(endsB[1].arc - endsA[0].arc), std::abs(endsA[1].arc - endsB[0].arc)) < ropeA.exclusion)
-      return false;
+    apart = !(std::max(std::abs(endsB[1].arc - endsA[0].arc), std::abs(endsA[1].arc - endsB[0].arc)) < ropeA.exclusion);
   }
   // The axes' boxes apart by more than the radii and the reach: the axes are too (most pairs the tree
   // reports in a knot, whose leaves are padded for rope-body contact). A lower bound of the distance,
@@ -220,12 +223,19 @@ bool RopeRopeContacts::mayTouch(const RopeCapsulePair& pair) const {
   }
   // Compared squared (no square root per pair): the slack covers the rounding either way.
   const double limit = (ropeA.radius + ropeB.radius + reach(pair)) * (1.0 + 1e-9);
-  return !(gap2 > limit * limit);
+  return apart & !(gap2 > limit * limit);
 }
 
 void RopeRopeContacts::dropDistantPairs(std::vector<RopeCapsulePair>& pairs) const {
-  pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [&](const RopeCapsulePair& pair) { return !mayTouch(pair); }),
-              pairs.end());
+  // In place and in order, as std::remove_if, but each pair is written and the count advanced by the
+  // test's outcome rather than branched on.
+  size_t kept = 0;
+  for (const RopeCapsulePair& pair : pairs) {
+    const bool touch = mayTouch(pair);
+    pairs[kept] = pair;
+    kept += touch ? 1 : 0;
+  }
+  pairs.resize(kept);
 }
 
 RopeRopeContacts::Candidate RopeRopeContacts::contactBetween(int ropeA, double sA, double arcA, int ropeB, double sB,
@@ -681,8 +691,11 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   const auto before = [](const Hit& a, const Hit& b) {
     return std::tie(a.gap, a.ropeA, a.sA, a.ropeB, a.sB) < std::tie(b.gap, b.ropeA, b.sA, b.ropeB, b.sB);
   };
-  // Sorted through small keys (a hit is some 70 bytes), by the gap in linear time; the rest of the key
-  // only orders equal gaps.
+  // Sorted through small keys (a hit is 64 bytes), by the gap's leading 4 bytes in linear time (sign,
+  // exponent and 20 bits of mantissa: gaps within a millionth of each other share one, and half the
+  // passes of a sort by the whole gap); each run of equal leading keys is then ordered by the whole
+  // key, stably: the order is the whole key's either way.
+  constexpr int kGapKeyBytes = 4;
   order_.clear();
   for (size_t c = 0; c < hits_.size(); ++c) {
     const Hit& hit = hits_[c];
@@ -690,15 +703,19 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     if (hit.candidate >= 0 && candidates_[static_cast<size_t>(hit.candidate)].suppressed) continue;
     order_.push_back({hit.gap, static_cast<int>(c)});
   }
-  radixSortByKey(order_, orderScratch_);
+  radixSortByKey(order_, orderScratch_, kGapKeyBytes);
   for (size_t first = 0; first < order_.size();) {
+    const std::uint64_t run = leadingKey(order_[first].key, kGapKeyBytes);
     size_t last = first + 1;
-    while (last < order_.size() && order_[last].key == order_[first].key) ++last;
-    if (last - first > 1) {
-      std::sort(order_.begin() + static_cast<std::ptrdiff_t>(first), order_.begin() + static_cast<std::ptrdiff_t>(last),
-                [&](const KeyedIndex& a, const KeyedIndex& b) {
-                  return before(hits_[static_cast<size_t>(a.index)], hits_[static_cast<size_t>(b.index)]);
-                });
+    while (last < order_.size() && leadingKey(order_[last].key, kGapKeyBytes) == run) ++last;
+    // Insertion sort: stable, no allocation, and the runs are a few hits long.
+    for (size_t i = first + 1; i < last; ++i) {
+      const KeyedIndex item = order_[i];
+      size_t j = i;
+      for (; j > first && before(hits_[static_cast<size_t>(item.index)], hits_[static_cast<size_t>(order_[j - 1].index)]); --j) {
+        order_[j] = order_[j - 1];
+      }
+      order_[j] = item;
     }
     first = last;
   }

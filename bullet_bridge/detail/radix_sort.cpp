@@ -3,6 +3,9 @@
 
 #include <array>
 #include <cstring>
+#include <string>
+
+#include "rope/common/error.h"
 
 namespace rope::bullet {
 
@@ -16,20 +19,30 @@ std::uint64_t orderedBits(double x) {
   return (bits & kSign) != 0 ? ~bits : bits | kSign;
 }
 
+void requireBytes(int bytes) {
+  if (bytes < 1 || bytes > 8) throw InvalidArgument("bytes", std::to_string(bytes), "must be in [1, 8]");
+}
+
 }  // namespace
 
-void radixSortByKey(std::vector<KeyedIndex>& items, std::vector<KeyedIndex>& scratch) {
+std::uint64_t leadingKey(double key, int bytes) {
+  requireBytes(bytes);
+  return orderedBits(key) >> (8 * (8 - bytes));
+}
+
+void radixSortByKey(std::vector<KeyedIndex>& items, std::vector<KeyedIndex>& scratch, int bytes) {
+  requireBytes(bytes);
   const size_t n = items.size();
   if (n < 2) return;
   scratch.resize(n);
   std::array<std::array<size_t, 256>, 8> counts{};
   for (const KeyedIndex& item : items) {
     const std::uint64_t bits = orderedBits(item.key);
-    for (int digit = 0; digit < 8; ++digit) ++counts[static_cast<size_t>(digit)][(bits >> (8 * digit)) & 0xff];
+    for (int digit = 8 - bytes; digit < 8; ++digit) ++counts[static_cast<size_t>(digit)][(bits >> (8 * digit)) & 0xff];
   }
   std::vector<KeyedIndex>* from = &items;
   std::vector<KeyedIndex>* to = &scratch;
-  for (int digit = 0; digit < 8; ++digit) {
+  for (int digit = 8 - bytes; digit < 8; ++digit) {
     std::array<size_t, 256>& count = counts[static_cast<size_t>(digit)];
     const std::uint64_t first = (orderedBits((*from)[0].key) >> (8 * digit)) & 0xff;
     if (count[first] == n) continue;  // every key has this byte: the pass would change nothing

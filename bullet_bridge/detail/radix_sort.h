@@ -16,8 +16,16 @@ struct KeyedIndex {
   int index = 0;
 };
 
-// Sorts items by key, ascending and stably (equal keys keep their order; -0 comes before +0). scratch
-// is working memory (its contents are lost; no allocation once it has grown to the items' size).
-void radixSortByKey(std::vector<KeyedIndex>& items, std::vector<KeyedIndex>& scratch);
+// The leading `bytes` bytes (1 to 8) of the key's bit pattern mapped to an unsigned integer of the
+// key's order: keys in order have leading keys in order, and keys that differ only in the dropped
+// bytes share one. Throws InvalidArgument("bytes") outside [1, 8].
+std::uint64_t leadingKey(double key, int bytes);
+
+// Sorts items stably by leadingKey(key, bytes), ascending: with all 8 bytes exactly by key (equal keys
+// keep their order; -0 comes before +0). Fewer bytes take fewer passes, for a caller that orders each
+// run of equal leading keys itself. scratch is working memory (its contents are lost; no allocation
+// once it has grown to the items' size). Throws InvalidArgument("bytes") outside [1, 8], sorting
+// nothing.
+void radixSortByKey(std::vector<KeyedIndex>& items, std::vector<KeyedIndex>& scratch, int bytes = 8);
 
 }  // namespace rope::bullet

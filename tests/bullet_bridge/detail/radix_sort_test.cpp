@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "rope/common/error.h"
+
 namespace rope::bullet {
 namespace {
 
@@ -45,6 +47,49 @@ TEST(RadixSort, MatchesStableSortOnMixedSignsRepeatsAndInfinities) {
   std::vector<KeyedIndex> scratch;
   radixSortByKey(items, scratch);
   expectSameOrder(items, expected);
+}
+
+TEST(RadixSort, LeadingBytesSortStablyByTheLeadingKeyWhichFollowsTheKeysOrder) {
+  std::mt19937_64 random(20261206);
+  std::uniform_real_distribution<double> gap(-2e-3, 1e-2);
+  std::vector<KeyedIndex> items;
+  for (int i = 0; i < 3000; ++i) {
+    // Clusters of keys a few ulps apart: they share their leading 4 bytes but not the whole key.
+    const double key = i % 3 == 0 || items.empty() ? gap(random) : std::nextafter(items.back().key, 1.0);
+    items.push_back({key, i});
+  }
+  for (const int bytes : {1, 4, 8}) {
+    std::vector<KeyedIndex> sorted = items, scratch;
+    radixSortByKey(sorted, scratch, bytes);
+    std::vector<KeyedIndex> expected = items;
+    std::stable_sort(expected.begin(), expected.end(), [&](const KeyedIndex& a, const KeyedIndex& b) {
+      return leadingKey(a.key, bytes) < leadingKey(b.key, bytes);
+    });
+    expectSameOrder(sorted, expected);
+  }
+  // In order of the keys, never against it; ties only where the key's trailing bytes differ.
+  std::vector<KeyedIndex> byKey = stdStableSorted(items);
+  int ties = 0;
+  for (size_t i = 1; i < byKey.size(); ++i) {
+    EXPECT_LE(leadingKey(byKey[i - 1].key, 4), leadingKey(byKey[i].key, 4)) << "at " << i;
+    if (byKey[i - 1].key < byKey[i].key && leadingKey(byKey[i - 1].key, 4) == leadingKey(byKey[i].key, 4)) ++ties;
+    EXPECT_EQ(leadingKey(byKey[i - 1].key, 8) < leadingKey(byKey[i].key, 8), byKey[i - 1].key < byKey[i].key) << "at " << i;
+  }
+  EXPECT_GT(ties, 100);  // the clusters tie on 4 bytes
+}
+
+TEST(RadixSort, ByteCountsOutsideOneToEightAreRefusedAndSortNothing) {
+  std::vector<KeyedIndex> items{{2.0, 0}, {1.0, 1}}, scratch;
+  for (const int bytes : {0, 9, -1}) {
+    try {
+      radixSortByKey(items, scratch, bytes);
+      ADD_FAILURE() << "no exception for bytes " << bytes;
+    } catch (const InvalidArgument& error) {
+      EXPECT_EQ(error.parameter(), "bytes");
+    }
+    EXPECT_EQ(items[0].index, 0);
+    EXPECT_THROW(leadingKey(1.0, bytes), InvalidArgument);
+  }
 }
 
 TEST(RadixSort, NegativeZeroComesJustBeforePositiveZero) {

@@ -708,14 +708,17 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     const std::uint64_t run = leadingKey(order_[first].key, kGapKeyBytes);
     size_t last = first + 1;
     while (last < order_.size() && leadingKey(order_[last].key, kGapKeyBytes) == run) ++last;
-    // Insertion sort: stable, no allocation, and the runs are a few hits long.
-    for (size_t i = first + 1; i < last; ++i) {
-      const KeyedIndex item = order_[i];
-      size_t j = i;
-      for (; j > first && before(hits_[static_cast<size_t>(item.index)], hits_[static_cast<size_t>(order_[j - 1].index)]); --j) {
-        order_[j] = order_[j - 1];
-      }
-      order_[j] = item;
+    // Stably: a run comes out of the radix sort by increasing index, which breaks the whole key's ties
+    // (std::sort then, not stable_sort, which may allocate; O(k log k) also for long runs, such as
+    // straight ropes side by side whose hits share one gap).
+    if (last - first > 1) {
+      std::sort(order_.begin() + static_cast<std::ptrdiff_t>(first), order_.begin() + static_cast<std::ptrdiff_t>(last),
+                [&](const KeyedIndex& a, const KeyedIndex& b) {
+                  const Hit& x = hits_[static_cast<size_t>(a.index)];
+                  const Hit& y = hits_[static_cast<size_t>(b.index)];
+                  if (before(x, y)) return true;
+                  return !before(y, x) && a.index < b.index;
+                });
     }
     first = last;
   }

@@ -19,7 +19,9 @@ namespace rope::bullet {
 
 using DbvtNodePair = std::pair<const btDbvtNode*, const btDbvtNode*>;
 
-// Whether two closed boxes meet (touching counts), as btDbvt's Intersect; false if either has a NaN.
+// Whether two closed boxes meet (touching counts), as btDbvt's Intersect; false if either has a NaN
+// (which, as in Bullet's test, raises FE_INVALID: the ropes' trees never hold such a box, since
+// CapsuleProxies::fitLeaf keeps the previous leaf instead).
 inline bool boxesMeet(const btDbvtVolume& a, const btDbvtVolume& b) {
   const btVector3& aLow = a.Mins();
   const btVector3& aHigh = a.Maxs();

@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "support/fp_exceptions.h"
+
 namespace rope::bullet {
 namespace {
 
@@ -114,6 +116,9 @@ TEST(TreePairs, NullAndSingleLeafTreesGiveNoPairsAndANaNBoxMeetsNothing) {
   EXPECT_TRUE(boxesMeet(box, btDbvtVolume::FromMM(btVector3(1, 1, 1), btVector3(2, 2, 2))));  // touching corner
   EXPECT_FALSE(boxesMeet(box, btDbvtVolume::FromMM(btVector3(1.0001, 0, 0), btVector3(2, 1, 1))));
   const btScalar nan = std::numeric_limits<btScalar>::quiet_NaN();
+  // An ordered comparison with a NaN raises the trapped "invalid" exception, as Bullet's own test
+  // does; the ropes' trees never hold such a box (CapsuleProxies::fitLeaf keeps the previous leaf).
+  const test::ScopedNoFloatingPointTraps noTraps;
   EXPECT_FALSE(boxesMeet(box, btDbvtVolume::FromMM(btVector3(nan, 0, 0), btVector3(1, 1, 1))));
   EXPECT_FALSE(boxesMeet(btDbvtVolume::FromMM(btVector3(0, 0, 0), btVector3(1, nan, 1)), box));
   EXPECT_EQ(leaf->volume.Mins().x(), 0);

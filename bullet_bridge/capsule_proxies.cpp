@@ -8,6 +8,7 @@
 #include <string>
 
 #include "bullet_bridge/detail/bullet_math.h"
+#include "bullet_bridge/detail/rest_arc.h"
 #include "rope/common/error.h"
 #include "rope/common/prefetch.h"
 
@@ -142,6 +143,7 @@ void CapsuleProxies::rebuild(const Rod& rod) {
   capsuleEnds(rod.knots(), rod.beginParameter(), rod.endParameter(), capsulesPerSpan_, ends_);  // no allocation in a steady state
   rod.positionsAt(ends_, points_);  // sorted: no span search
   speedsCurrent_ = false;
+  arcsCurrent_ = false;
   axis_.resize(ends_.size());
   for (std::size_t i = 0; i < ends_.size(); ++i) axis_[i] = toBullet(points_[i]);
   resize(static_cast<int>(ends_.size()) - 1);
@@ -155,10 +157,12 @@ void CapsuleProxies::rebuild(const std::vector<double>& ends, const std::vector<
   ends_ = ends;
   axis_ = axis;
   speedsCurrent_ = false;
+  arcsCurrent_ = false;
   resize(static_cast<int>(ends_.size()) - 1);
 }
 
 void CapsuleProxies::resize(int count) {
+  if (count != size()) treeIndexed_ = false;
   // Children leave and join at the end only, so child index = capsule index stays true.
   while (size() > count) {
     shape_->removeChildShapeByIndex(size() - 1);
@@ -245,6 +249,48 @@ const std::vector<double>& CapsuleProxies::endSpeeds(const Rod& rod) const {
   return speeds_;
 }
 
+const std::vector<double>& CapsuleProxies::endArcs(const Rod& rod) const {
+  if (arcsCurrent_) return arcs_;
+  buildRestArc(rod, restStarts_);
+  arcs_.resize(ends_.size());
+  for (std::size_t i = 0; i < ends_.size(); ++i) arcs_[i] = restArcAt(rod, restStarts_, ends_[i]);
+  arcsCurrent_ = true;
+  return arcs_;
+}
+
+const btDbvt& CapsuleProxies::tree() const {
+  if (!treeIndexed_) indexTree();
+  return *shape_->getDynamicAabbTree();
+}
+
+void CapsuleProxies::indexTree() const {
+  treeIndexed_ = true;
+  btDbvtNode* root = shape_->getDynamicAabbTree()->m_root;
+  if (root == nullptr) return;
+  // Breadth first (parents before children), then backwards: children before parents.
+  treeOrder_.clear();
+  treeOrder_.push_back(root);
+  for (std::size_t k = 0; k < treeOrder_.size(); ++k) {
+    btDbvtNode* node = treeOrder_[k];
+    if (node->isinternal()) {
+      treeOrder_.push_back(node->childs[0]);
+      treeOrder_.push_back(node->childs[1]);
+    }
+  }
+  for (std::size_t k = treeOrder_.size(); k-- > 0;) {
+    btDbvtNode* node = treeOrder_[k];
+    btScalar first, last;
+    if (node->isleaf()) {
+      first = last = static_cast<btScalar>(node->dataAsInt);
+    } else {
+      first = std::min(node->childs[0]->volume.Mins().w(), node->childs[1]->volume.Mins().w());
+      last = std::max(node->childs[0]->volume.Maxs().w(), node->childs[1]->volume.Maxs().w());
+    }
+    node->volume.tMins().setW(first);
+    node->volume.tMaxs().setW(last);
+  }
+}
+
 bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {
   requireCapsule(i);
   const double d2 = diagonal2(lo, hi);
@@ -258,6 +304,7 @@ bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {
   if (!leaf->volume.Contain(box) || !loose.Contain(leaf->volume)) {
     btDbvtVolume fat = btDbvtVolume::FromMM(lo - slack3, hi + slack3);
     shape_->getDynamicAabbTree()->update(leaf, fat);
+    treeIndexed_ = false;
   }
   return true;
 }

@@ -119,14 +119,23 @@ class CapsuleProxies {
   // sorted batch) and shared by everything that reads it in the substep: the leaves' sweep
   // (updateBoxes), the body contacts' reach and the rope-rope contacts' (contact/).
   const std::vector<double>& endSpeeds(const Rod& rod) const;
+  // The rest arclength (m from the rod's start, as the contact rules measure it) at each capsule end,
+  // size() + 1 increasing values, for `rod`: the rod the proxies were last rebuilt from, its knots and
+  // rest lengths unchanged since. Computed once per rebuild, as endSpeeds.
+  const std::vector<double>& endArcs(const Rod& rod) const;
   // The curve parameter of the point of capsule i's axis nearest to `point` (world frame).
   double parameterNear(int i, const btVector3& point) const;
 
   const btCollisionObject& object() const { return *object_; }
   btCollisionObject& object() { return *object_; }
   const RopeShape& shape() const { return *shape_; }
-  // The midphase tree (leaves: swept capsule boxes; leaf->dataAsInt = capsule index).
-  const btDbvt& tree() const { return *shape_->getDynamicAabbTree(); }
+  // The midphase tree (leaves: swept capsule boxes; leaf->dataAsInt = capsule index). Every node also
+  // names the capsules below it: firstCapsule(node) <= i <= lastCapsule(node) for each of its leaves'
+  // capsule indices i (so a self-contact walk can skip a subtree whose capsules are all within the
+  // exclusion of each other: rope_world.cpp, collideTrees).
+  const btDbvt& tree() const;
+  static int firstCapsule(const btDbvtNode& node) { return static_cast<int>(node.volume.Mins().w()); }
+  static int lastCapsule(const btDbvtNode& node) { return static_cast<int>(node.volume.Maxs().w()); }
   // Midphase: the capsules whose leaves meet the box [lo, hi] (world frame) grown by the part of the
   // speculative margin the leaves do not carry, in increasing order, into `out` (cleared first);
   // `stack` is the traversal's scratch.
@@ -145,6 +154,10 @@ class CapsuleProxies {
   void resize(int count);
   // updateBoxes without the broadphase: the capsules, their leaves and the object's box.
   int fitBoxes(const Rod& rod, double predictionTime, double margin);
+  // Writes every tree node's capsule range (firstCapsule, lastCapsule) into the w lanes of its box's
+  // corners, which Bullet's double-precision tree never reads or writes (its box tests and merges use
+  // x, y and z; the single-precision SSE merge takes the lanes' min and max, which keeps the ranges).
+  void indexTree() const;
   // The object's box from the tree's root (false, and the box kept, if too large), without Bullet.
   bool setObjectBox();
 
@@ -156,6 +169,11 @@ class CapsuleProxies {
   mutable std::vector<double> speeds_;  // endSpeeds: |C'(s)| at each capsule end, m/s
   mutable bool speedsCurrent_ = false;  // speeds_ belong to the last rebuild
   mutable PointList velocities_;        // scratch of endSpeeds
+  mutable std::vector<double> arcs_;    // endArcs: rest arclength at each capsule end, m
+  mutable bool arcsCurrent_ = false;    // arcs_ belong to the last rebuild
+  mutable std::vector<double> restStarts_;  // scratch of endArcs: rest arclength at each span start
+  mutable bool treeIndexed_ = false;        // the tree's capsule ranges are current (indexTree)
+  mutable std::vector<btDbvtNode*> treeOrder_;  // scratch of indexTree: the nodes, parents first
   std::vector<double> middles_;  // scratch of updateBoxes: each capsule's middle parameter
   PointList points_;             // scratch: curve points or velocities at ends_ or middles_
   std::vector<std::unique_ptr<RopeCapsuleShape>> capsuleShapes_;

@@ -218,16 +218,22 @@ void RopeWorld::substep(double h) {
         rope.rod().setGravity(gravity);
       }
     }
+    const bool resting = rope.resting();
+    if (resting) {
+      guardedCall([&] { rope.restSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+    } else {
+      guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+    }
     // Self-contact candidates: capsule pairs whose tree leaves (swept boxes) overlap. The tree is the
     // one the rope-rope pairs were found in (it is refitted only at the end of the substep), and the
     // pairs are sorted before the solve, so finding them here changes nothing but where the time goes.
+    // After the rope's begin (winches, rebuild): the walk skips what the solve's filter would drop by
+    // the capsules' rest arclengths (collideTrees), and those are the ones the solve reads.
     if (collideSelf(rope)) ropeStages_[r] = RopeStage::kPaired;
     const bool paired = ropeStages_[r] == RopeStage::kPaired;
-    if (rope.resting()) {
-      guardedCall([&] { rope.restSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+    if (resting) {
       if (!paired) ropeStages_[r] = RopeStage::kRested;
     } else {
-      guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
       if (!paired && rope.finishesAlone()) {
         guardedCall([&] { rope.finishSubstep(h); }, [&](const char* message) { rope.failSubstep(message); });
         ropeStages_[r] = RopeStage::kFinished;
@@ -342,17 +348,45 @@ void RopeWorld::collideTrees(const RopeObject& a, const RopeObject& b) {
   const RopeObject& second = swap ? a : b;
   const int rope0 = first.worldIndex_, rope1 = second.worldIndex_;
   const bool self = &first == &second;
+  const btDbvtNode* root0 = first.proxies().tree().m_root;
+  const btDbvtNode* root1 = second.proxies().tree().m_root;
   // The pairs' order is the walk's; sortCapsulePairs orders them before anything depends on it.
-  overlappingLeafPairs(first.proxies().tree().m_root, second.proxies().tree().m_root, treeStack_,
-                       [&](const btDbvtNode* leaf0, const btDbvtNode* leaf1) {
-                         int capsule0 = leaf0->dataAsInt, capsule1 = leaf1->dataAsInt;
-                         if (self) {
-                           // Neighbouring capsules of one rope always overlap and are never a contact.
-                           if (std::abs(capsule0 - capsule1) <= 1) return;
-                           if (capsule1 < capsule0) std::swap(capsule0, capsule1);
-                         }
-                         capsulePairs_.push_back(RopeCapsulePair{rope0, capsule0, rope1, capsule1});
-                       });
+  if (!self) {
+    overlappingLeafPairs(root0, root1, treeStack_, [&](const btDbvtNode* leaf0, const btDbvtNode* leaf1) {
+      capsulePairs_.push_back(RopeCapsulePair{rope0, leaf0->dataAsInt, rope1, leaf1->dataAsInt});
+    });
+    return;
+  }
+  // One rope: the solve drops every pair of capsules whose point pairs are all within the self-contact
+  // exclusion along the rest curve (RopeRopeContacts::mayTouch), two thirds of a tight knot's leaf
+  // pairs. The walk skips each pair of subtrees whose capsules are all that close: their capsule
+  // ranges (CapsuleProxies::firstCapsule, lastCapsule) span less than the exclusion between the
+  // first's start and the last's end, in the rest arclengths the solve reads (endArcs), so the solve
+  // sees the same pairs it keeps. Capsules past the rope's end (a rebuild since the tree was fitted)
+  // are dropped by the solve as well.
+  const CapsuleProxies& proxies = first.proxies();
+  const std::vector<double>& arcs = proxies.endArcs(first.rod());
+  const int lastCapsule = proxies.size() - 1;
+  const double exclusion = first.settings().effectiveSelfContactExclusion(first.rod().settings().radius);
+  const auto mayPair = [&](const btDbvtNode* x, const btDbvtNode* y) {
+    const int x0 = CapsuleProxies::firstCapsule(*x), y0 = CapsuleProxies::firstCapsule(*y);
+    const int x1 = std::min(CapsuleProxies::lastCapsule(*x), lastCapsule);
+    const int y1 = std::min(CapsuleProxies::lastCapsule(*y), lastCapsule);
+    if (x0 > x1 || y0 > y1) return false;
+    const double farthest = std::max(arcs[static_cast<std::size_t>(y1) + 1] - arcs[static_cast<std::size_t>(x0)],
+                                     arcs[static_cast<std::size_t>(x1) + 1] - arcs[static_cast<std::size_t>(y0)]);
+    return !(farthest < exclusion);
+  };
+  overlappingLeafPairs(
+      root0, root1, treeStack_,
+      [&](const btDbvtNode* leaf0, const btDbvtNode* leaf1) {
+        int capsule0 = leaf0->dataAsInt, capsule1 = leaf1->dataAsInt;
+        // Neighbouring capsules of one rope always overlap and are never a contact.
+        if (std::abs(capsule0 - capsule1) <= 1) return;
+        if (capsule1 < capsule0) std::swap(capsule0, capsule1);
+        capsulePairs_.push_back(RopeCapsulePair{rope0, capsule0, rope1, capsule1});
+      },
+      mayPair);
 }
 
 void RopeWorld::addFastBodies(double h) {

@@ -11,6 +11,7 @@
 #include "bullet_bridge/contact/axis_departure.h"
 #include "bullet_bridge/contact/contact_response.h"
 #include "bullet_bridge/detail/radix_sort.h"
+#include "bullet_bridge/detail/rest_arc.h"
 #include "bullet_bridge/rope_object.h"
 #include "bullet_bridge/narrowphase/segment_segment_distance.h"
 #include "rope/common/error.h"
@@ -48,28 +49,6 @@ constexpr double kArcJoin = 1e-9;
 
 btVector3 toBullet(const Vec3& v) {
   return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
-}
-
-// Cumulative rest length at the start of every knot span of the rod (span j = knot span degree + j),
-// so that the rest arclength between two parameters costs a binary search.
-void buildRestArc(const Rod& rod, std::vector<double>& starts) {
-  const RodIntegrals& integrals = rod.integrals();
-  starts.resize(static_cast<size_t>(integrals.spanCount()) + 1);
-  starts[0] = 0.0;
-  for (int j = 0; j < integrals.spanCount(); ++j) {
-    starts[static_cast<size_t>(j) + 1] = starts[static_cast<size_t>(j)] + integrals.span(j).restLength;
-  }
-}
-
-// Rest arclength from the rod's start to C(s), linear in s inside a span (exact for ropes made from a
-// segment, whose parameter is the rest arclength).
-double restArcAt(const Rod& rod, const std::vector<double>& starts, double s) {
-  const KnotVector& knots = rod.knots();
-  const int k = knots.findSpan(s);
-  const int j = k - knots.degree();
-  const double width = knots[k + 1] - knots[k];
-  const double fraction = width > 0.0 ? (s - knots[k]) / width : 0.0;
-  return starts[static_cast<size_t>(j)] + fraction * (starts[static_cast<size_t>(j) + 1] - starts[static_cast<size_t>(j)]);
 }
 
 double parameterAt(const CapsuleProxy& proxy, double t) {
@@ -146,10 +125,8 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
     if (proxies.size() == 0) continue;  // no pair can name one of its capsules
     ends.resize(static_cast<size_t>(proxies.size()) + 1);
     const std::vector<double>& speeds = proxies.endSpeeds(rod);  // the body contacts' too
-    for (int i = 0; i <= proxies.size(); ++i) {
-      const double s = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
-      ends[static_cast<size_t>(i)] = {restArcAt(rod, restArc_[r], s), speeds[static_cast<size_t>(i)]};
-    }
+    const std::vector<double>& arcs = proxies.endArcs(rod);      // the self-contact walk's too
+    for (size_t i = 0; i < ends.size(); ++i) ends[i] = {arcs[i], speeds[i]};
     // Curvature vector of each capsule's stretch of curve (1/m, towards the centre of curvature), from
     // the turn of the chords on either side: what decides which rope a distributed contact samples.
     // Only two different ropes have distributed contacts (a lone rope's knot needs none).

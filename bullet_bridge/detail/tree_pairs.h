@@ -33,14 +33,18 @@ inline bool boxesMeet(const btDbvtVolume& a, const btDbvtVolume& b) {
 }
 
 // Calls visit(leaf0, leaf1) for every pair of a leaf of root0's tree and a leaf of root1's tree whose
-// boxes meet. With root0 == root1, every unordered pair of two different leaves of the tree once
-// (leaf0 and leaf1 in no particular order; a leaf is never paired with itself). Null roots: nothing.
-// `stack` is the walk's scratch (its contents are lost; no allocation once it has grown).
-template <class Visit>
+// boxes meet, except those below a pair of nodes (node0, node1) for which mayPair(node0, node1) is
+// false (node0 == node1: the pairs of two leaves below that one node); mayPair is asked only about
+// nodes whose boxes meet. With root0 == root1, every unordered pair of two different leaves of the
+// tree once (leaf0 and leaf1 in no particular order; a leaf is never paired with itself). Null
+// roots: nothing. `stack` is the walk's scratch (its contents are lost; no allocation once it has
+// grown).
+template <class Visit, class MayPair>
 void overlappingLeafPairs(const btDbvtNode* root0, const btDbvtNode* root1, std::vector<DbvtNodePair>& stack,
-                          Visit&& visit) {
+                          Visit&& visit, MayPair&& mayPair) {
   if (root0 == nullptr || root1 == nullptr) return;
   if (root0 != root1 && !boxesMeet(root0->volume, root1->volume)) return;
+  if (!mayPair(root0, root1)) return;
   // The stack by hand: a size check per push instead of a call to emplace_back (which the compiler
   // kept out of line, 1.9 % of the knot step).
   if (stack.size() < 64) stack.resize(64);
@@ -59,23 +63,31 @@ void overlappingLeafPairs(const btDbvtNode* root0, const btDbvtNode* root1, std:
       if (a->isleaf()) continue;
       const btDbvtNode* left = a->childs[0];
       const btDbvtNode* right = a->childs[1];
-      push(left, left);
-      push(right, right);
-      if (boxesMeet(left->volume, right->volume)) push(left, right);
+      if (mayPair(left, left)) push(left, left);
+      if (mayPair(right, right)) push(right, right);
+      if (boxesMeet(left->volume, right->volume) && mayPair(left, right)) push(left, right);
     } else if (a->isleaf() && b->isleaf()) {
       visit(a, b);
     } else if (b->isleaf()) {
       for (const btDbvtNode* child : a->childs)
-        if (boxesMeet(child->volume, b->volume)) push(child, b);
+        if (boxesMeet(child->volume, b->volume) && mayPair(child, b)) push(child, b);
     } else if (a->isleaf()) {
       for (const btDbvtNode* child : b->childs)
-        if (boxesMeet(a->volume, child->volume)) push(a, child);
+        if (boxesMeet(a->volume, child->volume) && mayPair(a, child)) push(a, child);
     } else {
       for (const btDbvtNode* childA : a->childs)
         for (const btDbvtNode* childB : b->childs)
-          if (boxesMeet(childA->volume, childB->volume)) push(childA, childB);
+          if (boxesMeet(childA->volume, childB->volume) && mayPair(childA, childB)) push(childA, childB);
     }
   }
+}
+
+// Every pair whose boxes meet.
+template <class Visit>
+void overlappingLeafPairs(const btDbvtNode* root0, const btDbvtNode* root1, std::vector<DbvtNodePair>& stack,
+                          Visit&& visit) {
+  overlappingLeafPairs(root0, root1, stack, std::forward<Visit>(visit),
+                       [](const btDbvtNode*, const btDbvtNode*) { return true; });
 }
 
 }  // namespace rope::bullet

@@ -8,6 +8,7 @@
 
 #include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -120,6 +121,72 @@ TEST(CapsuleProxies, EndSpeedsAreTheCurveSpeedsAtTheCapsuleEndsOfTheLastRebuild)
     // Asked again without a rebuild: the same values (the same vector).
     EXPECT_EQ(&proxies.endSpeeds(rope.rod()), &speeds);
   }
+}
+
+// Every node's capsule range (firstCapsule .. lastCapsule) is the smallest and largest capsule index of
+// the leaves below it, and the end arclengths are the rest arclengths at the capsule ends, through
+// refits, knot insertions (capsules added) and removals (capsules dropped).
+TEST(CapsuleProxies, TreeNodesNameTheirCapsulesAndEndArcsFollowTheRestCurve) {
+  demos::PhysicsWorld physics(btVector3(0, 0, 0));
+  RopeObject rope(Rod::fromSegment(straightRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)));
+  physics.ropes().addRope(rope);
+  const double h = 1.0 / 240.0;
+  int internalNodes = 0, changes = 0;
+  const auto check = [&](const char* when) {
+    const CapsuleProxies& proxies = rope.proxies();
+    // Each node's leaves, by a walk of its own (children before the node).
+    struct Range {
+      int first, last, leaves;
+    };
+    std::function<Range(const btDbvtNode*)> below = [&](const btDbvtNode* node) -> Range {
+      if (node->isleaf()) return {node->dataAsInt, node->dataAsInt, 1};
+      const Range a = below(node->childs[0]), b = below(node->childs[1]);
+      ++internalNodes;
+      return {std::min(a.first, b.first), std::max(a.last, b.last), a.leaves + b.leaves};
+    };
+    std::function<void(const btDbvtNode*)> expectRanges = [&](const btDbvtNode* node) {
+      const Range range = below(node);
+      EXPECT_EQ(CapsuleProxies::firstCapsule(*node), range.first) << when;
+      EXPECT_EQ(CapsuleProxies::lastCapsule(*node), range.last) << when;
+      if (node->isinternal()) {
+        expectRanges(node->childs[0]);
+        expectRanges(node->childs[1]);
+      }
+    };
+    const btDbvtNode* root = proxies.tree().m_root;
+    ASSERT_NE(root, nullptr);
+    EXPECT_EQ(below(root).leaves, proxies.size()) << when;
+    expectRanges(root);
+    // A rope made from a segment: its parameter is the rest arclength from its start.
+    const std::vector<double>& arcs = proxies.endArcs(rope.rod());
+    ASSERT_EQ(arcs.size(), static_cast<std::size_t>(proxies.size()) + 1) << when;
+    for (int i = 0; i <= proxies.size(); ++i) {
+      const double s = i < proxies.size() ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
+      EXPECT_NEAR(arcs[static_cast<std::size_t>(i)], s - rope.rod().beginParameter(), 1e-12) << when << ", end " << i;
+    }
+    EXPECT_EQ(&proxies.endArcs(rope.rod()), &arcs);  // once per rebuild
+  };
+  check("at the start");
+  // A bend that moves the leaves (the tree is refitted), then more capsules, then fewer.
+  PointList velocities;
+  for (const Vec3& p : rope.rod().controlPoints()) velocities.push_back(Vec3(0.0, 40.0 * (p.x() - 0.5) * (p.x() - 0.5), 0.0));
+  rope.rod().setVelocities(velocities);
+  for (int step = 0; step < 3; ++step) {
+    physics.world().stepSimulation(btScalar(h), 1, btScalar(h));
+    check("after a refit");
+  }
+  const int before = rope.proxies().size();
+  for (const double s : {0.13, 0.37, 0.61, 0.83}) rope.rod().insertKnot(s);
+  physics.world().stepSimulation(btScalar(h), 1, btScalar(h));
+  check("after knot insertions");
+  changes += rope.proxies().size() > before ? 1 : 0;
+  const int inserted = rope.proxies().size();
+  for (const double s : {0.37, 0.61}) rope.rod().removeKnot(s);
+  physics.world().stepSimulation(btScalar(h), 1, btScalar(h));
+  check("after knot removals");
+  changes += rope.proxies().size() < inserted ? 1 : 0;
+  EXPECT_EQ(changes, 2);  // capsules were added, then dropped
+  EXPECT_GT(internalNodes, 0);
 }
 
 TEST(CapsuleProxies, HugeBoxesAreReportedNotHandedToBullet) {

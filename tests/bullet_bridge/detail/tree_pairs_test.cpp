@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The tree-tree walk (bullet_bridge/detail/tree_pairs.h) reports exactly the leaf pairs of Bullet's
 // own btDbvt::collideTT, for two trees and for a tree with itself, on chains of boxes like a rope's
-// (neighbours overlap, some touch exactly) after updates and removals, and none for a NaN box.
+// (neighbours overlap, some touch exactly) after updates and removals, and none for a NaN box; with a
+// filter of subtree pairs, exactly the pairs the filter keeps.
 #include "bullet_bridge/detail/tree_pairs.h"
 
 #include <gtest/gtest.h>
@@ -102,6 +103,61 @@ TEST(TreePairs, SameLeafPairsAsBulletsCollideTTForATreeWithItselfAndForTwoTrees)
   // Not a vacuous comparison: both kinds of pair occur, many times.
   EXPECT_GT(selfPairs, 1000u);
   EXPECT_GT(crossPairs, 100u);
+}
+
+// The filter: a pair of subtrees is skipped when the box around both is smaller than `size` along x.
+// Monotone, as the self-contact walk's capsule-range filter is (a subtree's box lies inside its
+// parent's), so the walk must report exactly the meeting leaf pairs that the filter keeps at the
+// leaves themselves.
+TEST(TreePairs, AFilteredWalkReportsTheMeetingLeafPairsTheFilterKeeps) {
+  std::mt19937_64 random(20261206);
+  btDbvt tree, other;
+  buildChain(tree, random, 260, 0.0);
+  std::mt19937_64 sameWalk(20261206);
+  buildChain(other, sameWalk, 120, 0.002);
+  std::vector<DbvtNodePair> stack;
+  for (const btScalar size : {btScalar(0.007), btScalar(0.009), btScalar(0.011)}) {
+    long asked = 0;
+    const auto mayPair = [&](const btDbvtNode* a, const btDbvtNode* b) {
+      ++asked;
+      const btScalar low = std::min(a->volume.Mins().x(), b->volume.Mins().x());
+      const btScalar high = std::max(a->volume.Maxs().x(), b->volume.Maxs().x());
+      return high - low >= size;
+    };
+    const auto keptAtLeaves = [&](const btDbvt& tree1, bool self) {
+      std::vector<const btDbvtNode*> leaves0, leaves1;
+      struct Collect : btDbvt::ICollide {
+        void Process(const btDbvtNode* leaf) override { out->push_back(leaf); }
+        std::vector<const btDbvtNode*>* out = nullptr;
+      } collect;
+      collect.out = &leaves0;
+      btDbvt::enumLeaves(tree.m_root, collect);
+      collect.out = &leaves1;
+      btDbvt::enumLeaves(tree1.m_root, collect);
+      LeafPairs pairs;
+      for (const btDbvtNode* a : leaves0)
+        for (const btDbvtNode* b : leaves1) {
+          if (self && a->dataAsInt >= b->dataAsInt) continue;
+          if (boxesMeet(a->volume, b->volume) && mayPair(a, b)) pairs.emplace_back(a->dataAsInt, b->dataAsInt);
+        }
+      return pairs;
+    };
+    for (const bool self : {true, false}) {
+      const btDbvt& tree1 = self ? tree : other;
+      LeafPairs walked;
+      asked = 0;
+      overlappingLeafPairs(
+          tree.m_root, tree1.m_root, stack,
+          [&](const btDbvtNode* a, const btDbvtNode* b) { walked.emplace_back(a->dataAsInt, b->dataAsInt); }, mayPair);
+      const long walkAsked = asked;
+      const LeafPairs expected = keptAtLeaves(tree1, self);
+      expectSamePairs(walked, expected, self);
+      // Not vacuous: the filter keeps some meeting pairs and drops others.
+      EXPECT_GT(expected.size(), 20u) << "size " << size << (self ? ", self" : ", two trees");
+      EXPECT_LT(expected.size(), walkPairs(tree, tree1, self, stack).size()) << "size " << size;
+      EXPECT_GT(walkAsked, 0);
+    }
+  }
 }
 
 TEST(TreePairs, NullAndSingleLeafTreesGiveNoPairsAndANaNBoxMeetsNothing) {

@@ -140,13 +140,27 @@ void CapsuleProxies::placeCapsule(int i) {
 }
 
 void CapsuleProxies::rebuild(const Rod& rod) {
+  arcsCurrent_ = false;  // a winch changes rest lengths, perhaps not the curve
+  // A rope rebuilds at the end of a substep (updateBoxes) and again at the start of the next, mostly
+  // from the same curve: then the capsules stand (and so do the end speeds if the velocities do too).
+  // Compared value by value, so any change of the rod in between (a winch, the user) rebuilds.
+  if (rod.degree() == rebuiltDegree_ && rod.knots().values() == rebuiltKnots_ && rod.controlPoints() == rebuiltPoints_) {
+    if (!(rod.velocities() == rebuiltVelocities_)) {
+      speedsCurrent_ = false;
+      rebuiltVelocities_ = rod.velocities();
+    }
+    return;
+  }
   capsuleEnds(rod.knots(), rod.beginParameter(), rod.endParameter(), capsulesPerSpan_, ends_);  // no allocation in a steady state
   rod.positionsAt(ends_, points_);  // sorted: no span search
   speedsCurrent_ = false;
-  arcsCurrent_ = false;
   axis_.resize(ends_.size());
   for (std::size_t i = 0; i < ends_.size(); ++i) axis_[i] = toBullet(points_[i]);
   resize(static_cast<int>(ends_.size()) - 1);
+  rebuiltDegree_ = rod.degree();
+  rebuiltKnots_ = rod.knots().values();
+  rebuiltPoints_ = rod.controlPoints();
+  rebuiltVelocities_ = rod.velocities();
 }
 
 void CapsuleProxies::rebuild(const std::vector<double>& ends, const std::vector<btVector3>& axis) {
@@ -158,6 +172,7 @@ void CapsuleProxies::rebuild(const std::vector<double>& ends, const std::vector<
   axis_ = axis;
   speedsCurrent_ = false;
   arcsCurrent_ = false;
+  rebuiltDegree_ = -1;  // the capsules no longer come from a rod
   resize(static_cast<int>(ends_.size()) - 1);
 }
 

@@ -83,7 +83,8 @@ class CapsuleProxies {
   void setFilter(int group, int mask);
 
   // Follows the rod's current knots (adds or removes capsules) and evaluates the capsule axes (the
-  // compound's children follow in updateBoxes).
+  // compound's children follow in updateBoxes). From the same knots and control points as the last
+  // rebuild, the capsules stay as they are (nothing to evaluate).
   void rebuild(const Rod& rod);
   // The same from capsule ends computed by the caller (capsuleEnds) and the curve's points at them.
   // Throws InvalidArgument("ends") for fewer than 2 ends, ("axis") unless axis.size() == ends.size(),
@@ -166,6 +167,11 @@ class CapsuleProxies {
   std::vector<CapsuleProxy> proxies_;
   std::vector<btVector3> axis_;  // size() + 1 axis points at the last rebuild
   std::vector<double> ends_;     // scratch of rebuild: the capsule ends' curve parameters
+  // The rod the capsules were last rebuilt from (degree -1: none, or caller-built capsules): its
+  // knots, control points and velocities, so that a rebuild from the same rod state keeps them.
+  int rebuiltDegree_ = -1;
+  std::vector<double> rebuiltKnots_;
+  PointList rebuiltPoints_, rebuiltVelocities_;
   mutable std::vector<double> speeds_;  // endSpeeds: |C'(s)| at each capsule end, m/s
   mutable bool speedsCurrent_ = false;  // speeds_ belong to the last rebuild
   mutable PointList velocities_;        // scratch of endSpeeds

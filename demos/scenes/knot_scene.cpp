@@ -105,7 +105,13 @@ KnotRegion knotRegion(const bullet::RopeObject& rope, const bullet::ContactRepor
   }
   if (!region.found) return region;
   const Rod& rod = rope.rod();
-  region.length = arcLength(rod.knots(), rod.controlPoints(), region.begin, region.end);
+  // A read-out, every step: 8 Gauss points per knot span, not arcLength's default 16 on 4 pieces per
+  // span, which cost 5 % of the knot scene's step for digits nothing reads (the 300 lengths a 10 s
+  // `ropesim knot` run records agree to all 10 digits it prints).
+  ArcLengthOptions quadrature;
+  quadrature.gaussPoints = 8;
+  quadrature.piecesPerSpan = 1;
+  region.length = arcLength(rod.knots(), rod.controlPoints(), region.begin, region.end, quadrature);
   constexpr int kSamples = 200;
   std::vector<double> samples(kSamples + 1);
   samples[0] = region.begin;

@@ -189,6 +189,44 @@ TEST(CapsuleProxies, TreeNodesNameTheirCapsulesAndEndArcsFollowTheRestCurve) {
   EXPECT_GT(internalNodes, 0);
 }
 
+// A rebuild from the rod it was last rebuilt from keeps the capsules (and the end speeds); any change
+// of the control points, the knots or the velocities in between is followed, as by a fresh object.
+TEST(CapsuleProxies, ARebuildFollowsEveryChangeOfTheRodAndOnlyThen) {
+  Rod rod = Rod::fromSegment(straightRope(), Vec3(0, 1, 0), Vec3(1, 1, 0));
+  CapsuleProxies proxies(nullptr, kKinematicRopeTag, rod.settings().radius);
+  const auto expectAsFresh = [&](const char* when) {
+    CapsuleProxies fresh(nullptr, kKinematicRopeTag, rod.settings().radius);
+    fresh.rebuild(rod);
+    ASSERT_EQ(proxies.size(), fresh.size()) << when;
+    for (int i = 0; i < fresh.size(); ++i) {
+      EXPECT_EQ(proxies.proxy(i).s0, fresh.proxy(i).s0) << when << ", capsule " << i;
+      EXPECT_EQ(proxies.capsule(i).a, fresh.capsule(i).a) << when << ", capsule " << i;
+      EXPECT_EQ(proxies.capsule(i).b, fresh.capsule(i).b) << when << ", capsule " << i;
+    }
+    EXPECT_EQ(proxies.endSpeeds(rod), fresh.endSpeeds(rod)) << when;
+    EXPECT_EQ(proxies.endArcs(rod), fresh.endArcs(rod)) << when;
+  };
+  proxies.rebuild(rod);
+  expectAsFresh("first rebuild");
+  const std::vector<double>* speeds = &proxies.endSpeeds(rod);
+  proxies.rebuild(rod);  // nothing changed
+  expectAsFresh("same rod");
+  EXPECT_EQ(&proxies.endSpeeds(rod), speeds);
+  PointList points = rod.controlPoints();
+  points[3] += Vec3(0.0, 0.02, 0.0);
+  rod.setControlPoints(points);
+  proxies.rebuild(rod);
+  expectAsFresh("a control point moved");
+  PointList velocities(static_cast<std::size_t>(rod.controlPointCount()), Vec3(0.0, 0.0, 0.0));
+  velocities[2] = Vec3(0.5, 0.0, 0.0);
+  rod.setVelocities(velocities);
+  proxies.rebuild(rod);
+  expectAsFresh("new velocities, same curve");
+  rod.insertKnot(0.41);  // the same curve, more capsules
+  proxies.rebuild(rod);
+  expectAsFresh("a knot inserted");
+}
+
 TEST(CapsuleProxies, HugeBoxesAreReportedNotHandedToBullet) {
   demos::PhysicsWorld physics(btVector3(0, 0, 0));
   RopeObject rope(Rod::fromSegment(straightRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)));

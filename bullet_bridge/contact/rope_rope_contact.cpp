@@ -161,17 +161,6 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
   }
 }
 
-double RopeRopeContacts::reach(const RopeCapsulePair& pair) const {
-  const RopeFacts& a = facts_[static_cast<size_t>(pair.ropeA)];
-  const RopeFacts& b = facts_[static_cast<size_t>(pair.ropeB)];
-  // Candidates: gaps that the step can close (both ropes' speeds) plus a fraction of the radii; the
-  // body margin (speculativeMargin, sized for fast ropes against thin bodies) would flood a knot
-  // with distant pairs.
-  const double margin = std::min(std::max(a.margin, b.margin), 0.5 * (a.radius + b.radius));
-  return margin + h_ * (boxes_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)].speed +
-                        boxes_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)].speed);
-}
-
 bool RopeRopeContacts::mayTouch(const RopeCapsulePair& pair) const {
   const RopeFacts& ropeA = facts_[static_cast<size_t>(pair.ropeA)];
   const RopeFacts& ropeB = facts_[static_cast<size_t>(pair.ropeB)];

@@ -35,6 +35,8 @@
 // contacts become interaction knots ([A] §4), so the rope refines where it presses on itself.
 // Not API: installed only because rope_world.h holds the solver; it may change in any release.
 
+#include <algorithm>
+#include <cstddef>
 #include <vector>
 
 #include "bullet_bridge/contact_report.h"
@@ -170,7 +172,17 @@ class RopeRopeContacts {
   std::vector<RopeFacts> facts_;
   double h_ = 0.0;  // the substep prepare() was called for, s
   // m: the gap the pair's step may close (speculative margin and both capsules' speeds).
-  double reach(const RopeCapsulePair& pair) const;
+  // Defined here, inline: mayTouch asks it for every pair the walk reports.
+  double reach(const RopeCapsulePair& pair) const {
+    const RopeFacts& a = facts_[static_cast<std::size_t>(pair.ropeA)];
+    const RopeFacts& b = facts_[static_cast<std::size_t>(pair.ropeB)];
+    // Candidates: gaps that the step can close (both ropes' speeds) plus a fraction of the radii; the
+    // body margin (speculativeMargin, sized for fast ropes against thin bodies) would flood a knot
+    // with distant pairs.
+    const double margin = std::min(std::max(a.margin, b.margin), 0.5 * (a.radius + b.radius));
+    return margin + h_ * (boxes_[static_cast<std::size_t>(pair.ropeA)][static_cast<std::size_t>(pair.capsuleA)].speed +
+                          boxes_[static_cast<std::size_t>(pair.ropeB)][static_cast<std::size_t>(pair.capsuleB)].speed);
+  }
   bool mayTouch(const RopeCapsulePair& pair) const;
   // A contact of C_A(sA) with C_B(sB), centres m apart along normal (from B into A), not yet acting.
   static Candidate contactBetween(int ropeA, double sA, double arcA, int ropeB, double sB, double arcB, double radii,

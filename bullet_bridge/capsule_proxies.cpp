@@ -9,6 +9,7 @@
 
 #include "bullet_bridge/detail/bullet_math.h"
 #include "bullet_bridge/detail/rest_arc.h"
+#include "bullet_bridge/detail/tree_pairs.h"
 #include "rope/common/error.h"
 #include "rope/common/prefetch.h"
 
@@ -344,15 +345,25 @@ bool CapsuleProxies::setObjectBox() {
 
 void CapsuleProxies::capsulesOverlapping(const btVector3& lo, const btVector3& hi, std::vector<int>& out,
                                          btNodeStack& stack) const {
-  struct Collector : btDbvt::ICollide {
-    explicit Collector(std::vector<int>& capsules) : capsules(capsules) {}
-    void Process(const btDbvtNode* leaf) override { capsules.push_back(leaf->dataAsInt); }
-    std::vector<int>& capsules;
-  } collector(out);
+  // The walk of btDbvt::collideTVNoStackAlloc (the same leaves), with the branch-free box test and
+  // without a virtual call per leaf: every body near a rope asks this every substep.
   out.clear();
-  const btDbvt& tree = *shape_->getDynamicAabbTree();
+  const btDbvtNode* root = shape_->getDynamicAabbTree()->m_root;
   const btVector3 pad(queryPad_, queryPad_, queryPad_);
-  tree.collideTVNoStackAlloc(tree.m_root, btDbvtVolume::FromMM(lo - pad, hi + pad), stack, collector);
+  const btDbvtVolume box = btDbvtVolume::FromMM(lo - pad, hi + pad);
+  if (root == nullptr || !boxesMeet(root->volume, box)) return;
+  stack.resize(0);
+  stack.push_back(root);
+  while (stack.size() > 0) {
+    const btDbvtNode* node = stack[stack.size() - 1];
+    stack.pop_back();
+    if (node->isleaf()) {
+      out.push_back(node->dataAsInt);
+      continue;
+    }
+    for (const btDbvtNode* child : node->childs)
+      if (boxesMeet(child->volume, box)) stack.push_back(child);
+  }
   std::sort(out.begin(), out.end());
 }
 

@@ -158,6 +158,7 @@ void CapsuleProxies::rebuild(const Rod& rod) {
   axis_.resize(ends_.size());
   for (std::size_t i = 0; i < ends_.size(); ++i) axis_[i] = toBullet(points_[i]);
   resize(static_cast<int>(ends_.size()) - 1);
+  indexTree();
   rebuiltDegree_ = rod.degree();
   rebuiltKnots_ = rod.knots().values();
   rebuiltPoints_ = rod.controlPoints();
@@ -175,6 +176,7 @@ void CapsuleProxies::rebuild(const std::vector<double>& ends, const std::vector<
   arcsCurrent_ = false;
   rebuiltDegree_ = -1;  // the capsules no longer come from a rod
   resize(static_cast<int>(ends_.size()) - 1);
+  indexTree();
 }
 
 void CapsuleProxies::resize(int count) {
@@ -252,6 +254,7 @@ int CapsuleProxies::fitBoxes(const Rod& rod, double predictionTime, double margi
     hi += btVector3(pad, pad, pad);
     if (!fitLeaf(i, lo, hi)) ++overflows;
   }
+  indexTree();
   if (shape_->getDynamicAabbTree()->m_root == nullptr) return overflows;
   return setObjectBox() ? overflows : size();
 }
@@ -274,12 +277,8 @@ const std::vector<double>& CapsuleProxies::endArcs(const Rod& rod) const {
   return arcs_;
 }
 
-const btDbvt& CapsuleProxies::tree() const {
-  if (!treeIndexed_) indexTree();
-  return *shape_->getDynamicAabbTree();
-}
-
-void CapsuleProxies::indexTree() const {
+void CapsuleProxies::indexTree() {
+  if (treeIndexed_) return;
   treeIndexed_ = true;
   btDbvtNode* root = shape_->getDynamicAabbTree()->m_root;
   if (root == nullptr) return;
@@ -326,6 +325,7 @@ bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {
 }
 
 bool CapsuleProxies::fitObjectBox() {
+  indexTree();  // after the caller's fitLeaf calls
   if (!setObjectBox()) return false;
   announceObjectBox();
   return true;

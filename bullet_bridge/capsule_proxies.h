@@ -133,8 +133,10 @@ class CapsuleProxies {
   // The midphase tree (leaves: swept capsule boxes; leaf->dataAsInt = capsule index). Every node also
   // names the capsules below it: firstCapsule(node) <= i <= lastCapsule(node) for each of its leaves'
   // capsule indices i (so a self-contact walk can skip a subtree whose capsules are all within the
-  // exclusion of each other: rope_world.cpp, collideTrees).
-  const btDbvt& tree() const;
+  // exclusion of each other: rope_world.cpp, collideTrees). The ranges are brought up to date by
+  // rebuild, updateBoxes, updateBoxesDeferred and fitObjectBox (a caller that fits the leaves itself
+  // calls fitObjectBox after them), so reading the tree never writes to it.
+  const btDbvt& tree() const { return *shape_->getDynamicAabbTree(); }
   static int firstCapsule(const btDbvtNode& node) { return static_cast<int>(node.volume.Mins().w()); }
   static int lastCapsule(const btDbvtNode& node) { return static_cast<int>(node.volume.Maxs().w()); }
   // Midphase: the capsules whose leaves meet the box [lo, hi] (world frame) grown by the part of the
@@ -158,7 +160,8 @@ class CapsuleProxies {
   // Writes every tree node's capsule range (firstCapsule, lastCapsule) into the w lanes of its box's
   // corners, which Bullet's double-precision tree never reads or writes (its box tests and merges use
   // x, y and z; the single-precision SSE merge takes the lanes' min and max, which keeps the ranges).
-  void indexTree() const;
+  // Nothing if they are current (no refit or resize since the last call).
+  void indexTree();
   // The object's box from the tree's root (false, and the box kept, if too large), without Bullet.
   bool setObjectBox();
 
@@ -178,8 +181,8 @@ class CapsuleProxies {
   mutable std::vector<double> arcs_;    // endArcs: rest arclength at each capsule end, m
   mutable bool arcsCurrent_ = false;    // arcs_ belong to the last rebuild
   mutable std::vector<double> restStarts_;  // scratch of endArcs: rest arclength at each span start
-  mutable bool treeIndexed_ = false;        // the tree's capsule ranges are current (indexTree)
-  mutable std::vector<btDbvtNode*> treeOrder_;  // scratch of indexTree: the nodes, parents first
+  bool treeIndexed_ = false;              // the tree's capsule ranges are current (indexTree)
+  std::vector<btDbvtNode*> treeOrder_;    // scratch of indexTree: the nodes, parents first
   std::vector<double> middles_;  // scratch of updateBoxes: each capsule's middle parameter
   PointList points_;             // scratch: curve points or velocities at ends_ or middles_
   std::vector<std::unique_ptr<RopeCapsuleShape>> capsuleShapes_;

@@ -225,11 +225,15 @@ void RopeWorld::substep(double h) {
       guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
     }
     // Self-contact candidates: capsule pairs whose tree leaves (swept boxes) overlap. The tree is the
-    // one the rope-rope pairs were found in (it is refitted only at the end of the substep), and the
-    // pairs are sorted before the solve, so finding them here changes nothing but where the time goes.
-    // After the rope's begin (winches, rebuild): the walk skips what the solve's filter would drop by
-    // the capsules' rest arclengths (collideTrees), and those are the ones the solve reads.
-    if (collideSelf(rope)) ropeStages_[r] = RopeStage::kPaired;
+    // one the rope-rope pairs were found in (it is refitted only at the end of the substep; a winch
+    // that changed the capsule count in the rope's begin added or dropped leaves), and the pairs are
+    // sorted before the solve, so finding them here changes nothing but where the time goes. After
+    // the rope's begin (winches, rebuild): the walk skips what the solve's filter would drop by the
+    // capsules' rest arclengths (collideTrees), and those are the ones the solve reads. Guarded as the
+    // begin is: those arclengths are evaluated on the rod, and nothing may throw out of a step.
+    bool selfPaired = false;
+    guardedCall([&] { selfPaired = collideSelf(rope); }, [&](const char* message) { rope.failSubstep(message); });
+    if (selfPaired) ropeStages_[r] = RopeStage::kPaired;
     const bool paired = ropeStages_[r] == RopeStage::kPaired;
     if (resting) {
       if (!paired) ropeStages_[r] = RopeStage::kRested;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "rope/common/error.h"
@@ -809,7 +810,7 @@ bool Rod::linearisationExcessive() const {
   return excess > 0.01 * (kinetic + stretchingEnergy_ + gravity);
 }
 
-bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about) {
+void Rod::assembleState(double h, const PointList* about) {
   const int n = controlPointCount();
   const int d = degree();
   const int local = d + 1;
@@ -935,6 +936,61 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
       }
     }
   }
+}
+
+bool Rod::AssemblyCache::matches(const Rod& rod, double h, double c) const {
+  const RodSettings& settings = rod.settings_;
+  const auto same = [](const PointList& a, const PointList& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0);
+  };
+  return valid && integralsRevision == rod.integrals_.revision() && step == h && internalWeight == c &&
+         axial == settings.axialStiffness() && massDamping == settings.massDamping &&
+         stiffnessDamping == settings.stiffnessDamping && materialDamping == settings.materialDamping &&
+         gravity == settings.gravity && pointMasses == rod.pointMasses_ && same(points, rod.points_) &&
+         same(velocities, rod.velocities_);
+}
+
+void Rod::AssemblyCache::store(const Rod& rod, double h, double c) {
+  const RodSettings& settings = rod.settings_;
+  integralsRevision = rod.integrals_.revision();
+  step = h;
+  internalWeight = c;
+  axial = settings.axialStiffness();
+  massDamping = settings.massDamping;
+  stiffnessDamping = settings.stiffnessDamping;
+  materialDamping = settings.materialDamping;
+  gravity = settings.gravity;
+  pointMasses = rod.pointMasses_;
+  points = rod.points_;
+  velocities = rod.velocities_;
+  system = rod.system_;
+  force = rod.force_;
+  valid = true;
+}
+
+bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about) {
+  const int n = controlPointCount();
+  const int d = degree();
+  const int local = d + 1;
+  const double alpha = settings_.massDamping;
+  const double beta = settings_.stiffnessDamping;
+  const double c = internalWeight(h);
+  const double eta = settings_.materialDamping;
+
+  // The rod's own part of the step (everything but loads and springs) depends only on its state: the
+  // body-contact passes of a substep (solveTrial again with new contact springs) take it from the
+  // last pass linearised about the start instead of assembling it again, bit for bit the same.
+  if (about == nullptr && assemblyCache_.matches(*this, h, c)) {
+    system_ = assemblyCache_.system;
+    force_ = assemblyCache_.force;
+  } else {
+    assemblyCache_.valid = false;  // the members below are overwritten
+    assembleState(h, about);
+    if (about == nullptr) assemblyCache_.store(*this, h, c);
+  }
+
+  BasisValues basis;
+
   for (const PointLoad& load : loads_) {
     const int k = knots_.findSpan(load.parameter);
     evaluateBasis(knots_, k, load.parameter, 0, basis);

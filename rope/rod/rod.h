@@ -53,6 +53,7 @@
 // when adaptive; a clamp also keeps the nearest knot on either side, so that no removal turns its
 // tangent.
 
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -387,6 +388,10 @@ class Rod {
   // One linearised step. `about` (end-of-step control points of an earlier pass, or null for the
   // start of the step) is where the stretching force is linearised (rod.cpp: relinearise).
   bool assembleAndSolve(double h, StepReport& report, const PointList* about = nullptr);
+  // assembleAndSolve's part that depends on the rod's state alone: system_ and force_ from the spans
+  // (stretching linearised about `about` or the start, bending, mass, damping, gravity) and the point
+  // masses, with the products and blocks the step's bookkeeping reads (internalForce_ and the rest).
+  void assembleState(double h, const PointList* about);
   // The stretching energy the last pass's trial holds beyond the quadratic model it was solved with,
   // J (rod.cpp); and whether it is large enough to solve the step again about the trial.
   double linearisationExcess() const;
@@ -455,6 +460,29 @@ class Rod {
   double historyStep_ = 0.0;
   PointList newPoints_, newVelocities_;
   double stretchingEnergy_ = 0.0;  // J, at the last pass's linearisation point
+  // assembleState's system_ and force_ from its last run about the start of the step, and every input
+  // they were computed from (compared bit for bit): a pass with the same state reuses them.
+  struct AssemblyCache {
+    // Scratch like the solver: a copy of the rod starts without it (and assembles afresh).
+    AssemblyCache() = default;
+    AssemblyCache(const AssemblyCache&) {}
+    AssemblyCache& operator=(const AssemblyCache&) {
+      valid = false;
+      return *this;
+    }
+    bool valid = false;
+    std::uint64_t integralsRevision = 0;
+    double step = 0.0, internalWeight = 0.0, axial = 0.0;
+    double massDamping = 0.0, stiffnessDamping = 0.0, materialDamping = 0.0;
+    Vec3 gravity = Vec3::Zero();
+    std::vector<std::pair<double, double>> pointMasses;
+    PointList points, velocities;
+    SymmetricBandedMatrix system;
+    PointList force;
+    bool matches(const Rod& rod, double h, double c) const;
+    void store(const Rod& rod, double h, double c);
+  };
+  AssemblyCache assemblyCache_;
   PointList relinearisationPoints_, stretchScratch_;
   std::vector<double> bend_;
   std::vector<int> spans_;

@@ -2,6 +2,7 @@
 #include "rope/rod/rod_integrals.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -33,6 +34,13 @@ int RodIntegrals::exactGaussCount(int degree) {
   return std::max(2 * degree - 1, degree + 1);
 }
 
+void RodIntegrals::touch() {
+  // Process-wide, so that no two states of any two RodIntegrals share a revision (a copy shares its
+  // source's until one of them changes).
+  static std::atomic<std::uint64_t> counter{0};
+  revision_ = ++counter;
+}
+
 void RodIntegrals::build(const KnotVector& knots, const PointList& restPoints, double linearDensity,
                          double bendingStiffness, int gaussCount, StretchingQuadrature stretching) {
   degree_ = knots.degree();
@@ -48,6 +56,7 @@ void RodIntegrals::build(const KnotVector& knots, const PointList& restPoints, d
   data_.assign(static_cast<size_t>(spanCount_) * static_cast<size_t>(stride_), 0.0);
   for (int j = 0; j < spanCount_; ++j) computeSpan(knots, restPoints, j);
   balanceReducedWeights(knots);
+  touch();
 }
 
 void RodIntegrals::computeSpan(const KnotVector& knots, const PointList& restPoints, int j) {
@@ -134,6 +143,7 @@ void RodIntegrals::afterInsertion(const KnotInsertion& plan, const KnotVector& k
   ++spanCount_;
   recomputeRange(knots, restPoints, k - degree_ - 1, k + degree_ + 2);
   balanceReducedWeights(knots);
+  touch();
 }
 
 void RodIntegrals::afterRemoval(const KnotRemoval& plan, const KnotVector& knots,
@@ -147,6 +157,7 @@ void RodIntegrals::afterRemoval(const KnotRemoval& plan, const KnotVector& knots
   --spanCount_;
   recomputeRange(knots, restPoints, r - degree_ - 2, r + degree_ + 1);
   balanceReducedWeights(knots);
+  touch();
 }
 
 void RodIntegrals::balanceReducedWeights(const KnotVector& knots) {

@@ -20,6 +20,7 @@
 // length int l0' ds.
 // Not API: installed only because rope/rod/rod.h holds the integrals; it may change in any release.
 
+#include <cstdint>
 #include <vector>
 
 #include "rope/common/types.h"
@@ -65,6 +66,11 @@ class RodIntegrals {
   // After removal of the knot at plan.knotIndex (old numbering): O(d) spans recomputed.
   void afterRemoval(const KnotRemoval& plan, const KnotVector& knots, const PointList& restPoints);
 
+  // Changes (to a value no other RodIntegrals in the process has had) whenever the integrals change:
+  // build, afterInsertion, afterRemoval. Lets a caller keep results computed from them (Rod's
+  // assembly cache) and know when they are stale.
+  std::uint64_t revision() const { return revision_; }
+
   int degree() const { return degree_; }
   int gaussCount() const { return gaussCount_; }
   StretchingQuadrature stretchingQuadrature() const { return stretching_; }
@@ -90,6 +96,9 @@ class RodIntegrals {
   // Falls back to plain Gauss weights if the system is singular or a weight is not positive. O(n).
   void balanceReducedWeights(const KnotVector& knots);
 
+  void touch();  // revision_ <- a new process-wide value
+
+  std::uint64_t revision_ = 0;
   int degree_ = 3;
   int gaussCount_ = 0;
   int stretchSlots_ = 0;  // stretching points reserved per span

@@ -623,7 +623,18 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     if (self && std::abs(arcSA - arcSB) < exclusion) continue;
     if (cut != nullptr && std::abs(arcSA - cutArcA) + std::abs(arcSB - cutArcB) < exclusion) continue;
 
-    Hit hit{closest.distance - radii, sA, sB, arcSA, arcSB, radii, pair.ropeA, pair.ropeB, -1};
+    // Written in place, member by member: a Hit assembled on the stack and copied in stalled on the
+    // copy's wide loads of the narrow stores just made (store forwarding; 1 % of the knot's step).
+    Hit& hit = hits_.emplace_back();
+    hit.gap = closest.distance - radii;
+    hit.sA = sA;
+    hit.sB = sB;
+    hit.arcA = arcSA;
+    hit.arcB = arcSB;
+    hit.spacing = radii;
+    hit.ropeA = pair.ropeA;
+    hit.ropeB = pair.ropeB;
+    hit.candidate = -1;
     if (self) {
       // Until evaluated on the curve, the gap's lower bound: the axes' gap less both axes' departure
       // from the curve (axis_departure.h; once per substep for a rope with self-contact hits).
@@ -640,7 +651,6 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
       addTouchingStretch(ropes, pair, closest.s, closest.t, closest.distance, candidates_.back().normal, centres,
                          hit.candidate);
     }
-    hits_.push_back(hit);
   }
   sampleDistributedContacts(ropes);
 
@@ -667,7 +677,9 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     const Hit& hit = hits_[c];
     // Inside a distributed contact, which its samples carry.
     if (hit.candidate >= 0 && candidates_[static_cast<size_t>(hit.candidate)].suppressed) continue;
-    order_.push_back({hit.gap, static_cast<int>(c)});
+    KeyedIndex& keyed = order_.emplace_back();  // in place, as the hits above
+    keyed.key = hit.gap;
+    keyed.index = static_cast<int>(c);
   }
   radixSortByKey(order_, orderScratch_, kGapKeyBytes);
   for (size_t first = 0; first < order_.size();) {

@@ -124,18 +124,18 @@ void SymmetricBandedMatrix::forwardSubstitute3(double* x, int firstRow) const {
   }
 }
 
-void SymmetricBandedMatrix::backSubstitute3(double* x) const {
+void SymmetricBandedMatrix::backSubstitute3(double* x, int lastRow) const {
   const int w = bandwidth_;
   double* x0 = x;
   double* x1 = x + size_;
   double* x2 = x + 2 * size_;
-  for (int r = size_ - 1; r >= 0; --r) {
+  for (int r = size_ - 1; r >= lastRow; --r) {
     const double diagonal = band_[static_cast<size_t>(index(r, r))];
     const double value0 = x0[r] / diagonal, value1 = x1[r] / diagonal, value2 = x2[r] / diagonal;
     x0[r] = value0;
     x1[r] = value1;
     x2[r] = value2;
-    const int c0 = std::max(0, r - w);
+    const int c0 = std::max(lastRow, r - w);
     const double* row = &band_[static_cast<size_t>(index(r, c0))];
     for (int c = c0; c < r; ++c) {
       const double l = row[c - c0];

@@ -53,7 +53,10 @@ class SymmetricBandedMatrix {
   // impulses along x, y, z): one pass over the factor instead of three, and three independent
   // chains of divisions in flight. Each column's arithmetic is exactly that of the one-column form.
   void forwardSubstitute3(double* x, int firstRow = 0) const;
-  void backSubstitute3(double* x) const;
+  // x <- L^-T x on the rows from lastRow on; the rows before it are left partly updated (unspecified).
+  // Those rows feed none of the later ones, so a caller that reads only rows >= lastRow (a response
+  // read at curve points after the impulse's own) skips their share of the work, bitwise as the full pass.
+  void backSubstitute3(double* x, int lastRow = 0) const;
   // x <- A^-1 x.
   void solve(double* x) const;
 

@@ -55,10 +55,10 @@ void CoupledSolve::ensureResponse(int p) {
   const Rod& owner = *rods_[static_cast<size_t>(point.rod)];
   const int n3 = 3 * owner.controlPointCount();
   point.response.resize(static_cast<size_t>(3 * n3));
-  owner.trialImpulseResponses(point.s, point.response.data());
+  owner.trialImpulseResponsesOnward(point.s, point.response.data());
 }
 
-Eigen::Matrix3d CoupledSolve::zBlock(size_t k, size_t l) const {
+Eigen::Matrix3d CoupledSolve::zBlock(size_t k, size_t l) {
   // Z = J P J^T, block (k, l) = Y(a_k, a_l) - Y(a_k, b_l) - Y(b_k, a_l) + Y(b_k, b_l).
   return crossResponse(pointA_[k], pointA_[l]) - crossResponse(pointA_[k], pointB_[l]) -
          crossResponse(pointB_[k], pointA_[l]) + crossResponse(pointB_[k], pointB_[l]);
@@ -85,11 +85,17 @@ const Eigen::Matrix3d& CoupledSolve::zBlockCached(size_t k, size_t l) {
   return zCache_[at];
 }
 
-Eigen::Matrix3d CoupledSolve::crossResponse(int p, int q) const {
+Eigen::Matrix3d CoupledSolve::crossResponse(int p, int q) {
+  if (points_[static_cast<size_t>(p)].rod != points_[static_cast<size_t>(q)].rod) return Eigen::Matrix3d::Zero();
+  // Y(p, q) = B_p P B_q^T = Y(q, p)^T (P is symmetric): read the response of the point whose first
+  // control point comes first, at the other's rows, which it covers (Rod::trialImpulseResponsesOnward).
+  if (points_[static_cast<size_t>(p)].first < points_[static_cast<size_t>(q)].first) {
+    return crossResponse(q, p).transpose();
+  }
+  ensureResponse(q);
   const Point& a = points_[static_cast<size_t>(p)];
   const Point& b = points_[static_cast<size_t>(q)];
   Eigen::Matrix3d y = Eigen::Matrix3d::Zero();
-  if (a.rod != b.rod) return y;
   const size_t n3 = b.response.size() / 3;
   for (int column = 0; column < 3; ++column) {
     const double* r = &b.response[static_cast<size_t>(column) * n3];
@@ -157,8 +163,6 @@ bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vect
     if (!laws[k].admittance.allFinite() || !laws[k].impulse.allFinite()) return false;
     if (laws[k].admittance.isZero(0.0) && laws[k].impulse.isZero(0.0)) continue;  // p_k = 0 exactly
     acting_.push_back(static_cast<int>(k));
-    ensureResponse(pointA_[k]);
-    ensureResponse(pointB_[k]);
   }
   const int a = static_cast<int>(acting_.size());
   if (a == 0) return true;
@@ -228,22 +232,23 @@ void CoupledSolve::computeVelocityChange(const std::vector<Vec3>& impulses) {
   for (size_t r = 0; r < rods_.size(); ++r) {
     velocityChange_[r].assign(static_cast<size_t>(3 * rods_[r]->controlPointCount()), 0.0);
   }
+  // dv = P J^T p: the generalised impulses J^T p per rod, then one pinned solve per rod
+  // (Rod::trialGeneralizedResponse), whatever the number of couplings.
   for (size_t l = 0; l < impulses.size() && l < couplings_.size(); ++l) {
     if (impulses[l].isZero(0.0)) continue;
     for (int side = 0; side < 2; ++side) {
-      const int index = side == 0 ? pointA_[l] : pointB_[l];
-      ensureResponse(index);
-      const Point& point = points_[static_cast<size_t>(index)];
-      std::vector<double>& dv = velocityChange_[static_cast<size_t>(point.rod)];
+      const Point& point = points_[static_cast<size_t>(side == 0 ? pointA_[l] : pointB_[l])];
+      std::vector<double>& g = velocityChange_[static_cast<size_t>(point.rod)];
       touched_[static_cast<size_t>(point.rod)] = 1;
-      const size_t n3 = dv.size();
       const Vec3 p = side == 0 ? impulses[l] : Vec3(-impulses[l]);
-      for (int axis = 0; axis < 3; ++axis) {
-        const double* column = &point.response[static_cast<size_t>(axis) * n3];
-        const double weight = p[axis];
-        for (size_t j = 0; j < n3; ++j) dv[j] += weight * column[j];
+      for (int i = 0; i < point.count; ++i) {
+        double* block = &g[3 * static_cast<size_t>(point.first + i)];
+        for (int axis = 0; axis < 3; ++axis) block[axis] += point.basis[i] * p[axis];
       }
     }
+  }
+  for (size_t r = 0; r < rods_.size(); ++r) {
+    if (touched_[r]) rods_[r]->trialGeneralizedResponse(velocityChange_[r].data());
   }
   deltaValid_ = true;
 }
@@ -264,10 +269,13 @@ void CoupledSolve::apply(const std::vector<Vec3>& impulses) {
     throw InvalidArgument("impulses.size()", std::to_string(impulses.size()),
                           "must equal the coupling count " + std::to_string(couplings_.size()));
   }
-  // dv = P J^T p per rod, the sum solvedRelativeChange reads; after the correction it describes no
-  // solve any more.
-  computeVelocityChange(impulses);
-  deltaValid_ = false;
+  // dv = P J^T p per rod, the sum solvedRelativeChange reads: still the last solve's when these are
+  // its impulses (an active set applies what it solved, then reads the slips once more), else it
+  // describes no solve any more.
+  if (!(deltaValid_ && impulses == deltaImpulses_)) {
+    computeVelocityChange(impulses);
+    deltaValid_ = impulses == deltaImpulses_;
+  }
   for (size_t r = 0; r < rods_.size(); ++r) {
     Rod& rod = *rods_[r];
     if (!touched_[r]) continue;

@@ -19,8 +19,10 @@
 // solveImpulses). Only the couplings that act (a non-zero law) enter the dense solve, and only their points need
 // responses, computed when a coupling first acts: a candidate with a zero law has p = 0 exactly, yet
 // relativeChange() still predicts its motion (so an active set can switch it on). Cost: 3 O(n) solves
-// per acting coupling point, O(m a) for the predictions and O(a^3) for the dense solve (a acting
-// couplings out of m); the rods' band and factor are untouched. Exactly momentum-conserving: the
+// per acting coupling point (each only over the rows from its point on: Z's blocks read a response
+// at the later of two points, P being symmetric), one O(n) solve per rod for dv, O(m a) for the
+// predictions and O(a^3) for the dense solve (a acting couplings out of m); the rods' band and factor
+// are untouched. Exactly momentum-conserving: the
 // impulses are equal and opposite by construction.
 
 #include <vector>
@@ -85,12 +87,16 @@ class CoupledSolve {
     double basis[kMaxDegree + 1];
     int count;
     bool hasResponse;
-    std::vector<double> response;  // 3 columns of 3n (unit impulse along x, y, z), once needed
+    // 3 columns of 3n (unit impulse along x, y, z), once needed; valid on the rows from the point's
+    // own first control point on (Rod::trialImpulseResponsesOnward)
+    std::vector<double> response;
   };
   int pointIndex(int rod, double s);
   void ensureResponse(int p);
-  Eigen::Matrix3d crossResponse(int p, int q) const;  // B_p^T R_q (zero for different rods); R_q computed
-  Eigen::Matrix3d zBlock(size_t k, size_t l) const;   // block (k, l) of Z; l's points have responses
+  // Y(p, q) = B_p P B_q^T (zero for different rods), from the response of whichever point's first
+  // control point comes first (computed on demand).
+  Eigen::Matrix3d crossResponse(int p, int q);
+  Eigen::Matrix3d zBlock(size_t k, size_t l);  // block (k, l) of Z
   // zBlock(k, l), computed once per prepare(): an active-set loop asks for the same blocks in every
   // pass (relativeChange of each candidate against each acting coupling was 16 % of the 2 m pile's
   // step, computed 3.4 times over). The reference is valid until the next call.

@@ -171,6 +171,13 @@ void ConstrainedSolver::solveHomogeneous3(const SymmetricBandedMatrix& factor, d
   factor.backSubstitute3(x);
 }
 
+void ConstrainedSolver::solveHomogeneous3Onward(const SymmetricBandedMatrix& factor, double* x, int firstRow) {
+  const int size = factor.size();
+  factor.forwardSubstitute3(x, firstRow);
+  for (int column = 0; column < 3; ++column) projectOutConstraints(size, x + column * size, firstRow);
+  factor.backSubstitute3(x, firstRow);
+}
+
 void ConstrainedSolver::projectOutConstraints(int size, double* x, int firstRow) {
   if (columns_ == 0) return;
   // lambda = (Z^T Z)^-1 Z^T y, the multipliers that keep G dv = 0.

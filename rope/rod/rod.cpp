@@ -582,7 +582,11 @@ void Rod::trialImpulseResponse(double s, const Vec3& direction, double* response
   const_cast<ConstrainedSolver&>(solver_).solveHomogeneous(system_, response, 3 * first);
 }
 
-void Rod::trialImpulseResponses(double s, double* responses) const {
+void Rod::trialImpulseResponses(double s, double* responses) const { impulseResponses(s, responses, false); }
+
+void Rod::trialImpulseResponsesOnward(double s, double* responses) const { impulseResponses(s, responses, true); }
+
+void Rod::impulseResponses(double s, double* responses, bool onward) const {
   validateParameter(s);
   if (!trialValid_ || !solver_.ready()) {
     throw InvalidArgument("trial", "none", "solveTrial() must have succeeded on this rod since the last change");
@@ -598,7 +602,13 @@ void Rod::trialImpulseResponses(double s, double* responses) const {
     for (int a = 0; a <= d; ++a)
       for (int c = 0; c < 3; ++c) response[3 * (first + a) + c] = basis.d[0][static_cast<size_t>(a)] * direction[c];
   }
-  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous3(system_, responses, 3 * first);
+  // The scratch solver is logically const here: it only reuses the trial's Schur factor.
+  ConstrainedSolver& solver = const_cast<ConstrainedSolver&>(solver_);
+  if (onward) {
+    solver.solveHomogeneous3Onward(system_, responses, 3 * first);
+  } else {
+    solver.solveHomogeneous3(system_, responses, 3 * first);
+  }
 }
 
 void Rod::trialGeneralizedResponse(double* impulses) const {

@@ -267,6 +267,10 @@ class Rod {
   // All three axes at once (responses: 3 columns of 3n doubles, axis 0, 1, 2), bitwise the same as
   // three calls with axis 0, 1, 2, in one pass over the factor (about half the time).
   void trialImpulseResponses(double s, double* responses) const;
+  // The same on the rows of the control points from the first one with b_i(s) != 0 on (rows 3 i ..
+  // 3n of each column); the rows before them are left unspecified. Enough to read the response at
+  // any curve point whose first control point is not before s's (CoupledSolve), for less work.
+  void trialImpulseResponsesOnward(double s, double* responses) const;
   // In place: generalised impulses on the control points (3n doubles, N s, x y z per point; e.g. sums
   // of impulses at curve points times their basis values) -> the change of the trial's control-point
   // velocities they would cause, pins held. One O(n) solve for any number of impulses: a matrix-free
@@ -392,6 +396,8 @@ class Rod {
   // (stretching linearised about `about` or the start, bending, mass, damping, gravity) and the point
   // masses, with the products and blocks the step's bookkeeping reads (internalForce_ and the rest).
   void assembleState(double h, const PointList* about);
+  // trialImpulseResponses (onward: trialImpulseResponsesOnward).
+  void impulseResponses(double s, double* responses, bool onward) const;
   // The stretching energy the last pass's trial holds beyond the quadratic model it was solved with,
   // J (rod.cpp); and whether it is large enough to solve the step again about the trial.
   double linearisationExcess() const;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <random>
 
 namespace rope {
@@ -80,6 +81,33 @@ TEST(SymmetricBandedMatrix, ForwardSubstitutionSkipsLeadingZeros) {
   const Eigen::VectorXd expected = L.triangularView<Eigen::Lower>().solve(x);
   banded.forwardSubstitute(x.data(), 20);
   EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm());
+}
+
+// Three right-hand sides substituted together are each the one-column substitution, bit for bit; a
+// back substitution that stops at lastRow gives the same bits on the rows from lastRow on.
+TEST(SymmetricBandedMatrix, ThreeColumnSubstitutionsAreTheOneColumnOnesAndStopWhereAsked) {
+  SymmetricBandedMatrix banded;
+  const Eigen::MatrixXd dense = randomBanded(12, 3, 3, 91u, banded);
+  ASSERT_TRUE(banded.factorize());
+  const int n = static_cast<int>(dense.rows());
+  const int firstRow = 7;
+  Eigen::MatrixXd columns = Eigen::MatrixXd::Zero(n, 3);
+  for (int c = 0; c < 3; ++c)
+    for (int r = firstRow; r < n; ++r) columns(r, c) = std::sin(1.0 + r + 7.0 * c);
+  Eigen::MatrixXd single = columns;
+  for (int c = 0; c < 3; ++c) {
+    banded.forwardSubstitute(single.col(c).data(), firstRow);
+    banded.backSubstitute(single.col(c).data());
+  }
+  for (const int lastRow : {0, 1, 13, n - 1}) {
+    Eigen::MatrixXd together = columns;
+    banded.forwardSubstitute3(together.data(), firstRow);
+    banded.backSubstitute3(together.data(), lastRow);
+    for (int c = 0; c < 3; ++c)
+      for (int r = lastRow; r < n; ++r) EXPECT_EQ(together(r, c), single(r, c)) << "lastRow " << lastRow << " row " << r;
+  }
+  // And the substitutions solve the system.
+  EXPECT_LT((dense * single - columns).norm(), 1e-12 * columns.norm());
 }
 
 TEST(SymmetricBandedMatrix, BlocksAddSymmetrically) {

@@ -241,6 +241,28 @@ TEST(CoupledSolve, ThreeAxisResponsesAreTheSingleAxisOnesBitwise) {
   }
 }
 
+// The onward responses are the full ones, bit for bit, on the rows from the point's first control
+// point on, pins included.
+TEST(CoupledSolve, OnwardResponsesAreTheFullOnesFromThePointOn) {
+  TwoRods setup;
+  for (Rod* rod : {&setup.a, &setup.b}) {
+    ASSERT_TRUE(rod->solveTrial(TwoRods::kStep).ok);
+    const size_t n3 = static_cast<size_t>(3 * rod->controlPointCount());
+    for (const double s : {rod->beginParameter(), 0.37 * rod->endParameter(), rod->endParameter()}) {
+      std::vector<double> full(3 * n3), onward(3 * n3, std::numeric_limits<double>::quiet_NaN());
+      rod->trialImpulseResponses(s, full.data());
+      rod->trialImpulseResponsesOnward(s, onward.data());
+      const size_t first = static_cast<size_t>(3 * (rod->knots().findSpan(s) - rod->degree()));
+      for (size_t axis = 0; axis < 3; ++axis) {
+        for (size_t i = first; i < n3; ++i) {
+          EXPECT_EQ(std::memcmp(&full[axis * n3 + i], &onward[axis * n3 + i], sizeof(double)), 0)
+              << "s " << s << " axis " << axis << " entry " << i;
+        }
+      }
+    }
+  }
+}
+
 // Z blocks are cached per step: a second pass with other laws predicts what a fresh solve predicts.
 TEST(CoupledSolve, RepeatedPassesPredictWhatAFreshSolvePredicts) {
   TwoRods setup;

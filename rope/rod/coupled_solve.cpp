@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <string>
 
 #include <Eigen/Eigenvalues>
@@ -28,10 +30,32 @@ void requireParameterOn(const Rod& rod, std::size_t k, const char* member, doubl
 
 }  // namespace
 
-int CoupledSolve::pointIndex(int rod, double s) {
-  for (int p = 0; p < pointCount_; ++p) {
-    if (points_[static_cast<size_t>(p)].rod == rod && points_[static_cast<size_t>(p)].s == s) return p;
+size_t CoupledSolve::pointSlot(int rod, double s) const {
+  // FNV-1a over the rod and the parameter's bits; linear probing in a table at most half full.
+  const double key = s == 0.0 ? 0.0 : s;  // -0 and +0 are one point, as == says
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &key, sizeof bits);
+  std::uint64_t hash = 1469598103934665603ull;
+  for (const std::uint64_t word : {static_cast<std::uint64_t>(rod), bits}) {
+    hash ^= word;
+    hash *= 1099511628211ull;
   }
+  const size_t mask = pointTable_.size() - 1;
+  size_t slot = static_cast<size_t>(hash ^ (hash >> 29)) & mask;
+  for (;; slot = (slot + 1) & mask) {
+    const int p = pointTable_[slot];
+    if (p < 0) return slot;
+    const Point& point = points_[static_cast<size_t>(p)];
+    if (point.rod == rod && point.s == s) return slot;
+  }
+}
+
+int CoupledSolve::pointIndex(int rod, double s) {
+  // The couplings' points, each once (two couplings may share one): by hash, not by a scan of the
+  // points found so far, which was quadratic in the couplings (1 % of the 2 m pile's step).
+  const size_t slot = pointSlot(rod, s);
+  if (pointTable_[slot] >= 0) return pointTable_[slot];
+  pointTable_[slot] = pointCount_;
   // Reuse a slot (and its response buffer) from an earlier step: no allocation in a steady state.
   if (pointCount_ == static_cast<int>(points_.size())) points_.emplace_back();
   Point& point = points_[static_cast<size_t>(pointCount_)];
@@ -46,6 +70,13 @@ int CoupledSolve::pointIndex(int rod, double s) {
   point.count = knots.degree() + 1;
   for (int a = 0; a < point.count; ++a) point.basis[a] = basis.d[0][static_cast<size_t>(a)];
   return pointCount_++;
+}
+
+Vec3 CoupledSolve::pointValue(const Point& point, const PointList& field) {
+  const Vec3* q = field.data() + point.first;
+  Vec3 value = Vec3::Zero();
+  for (int a = 0; a < point.count; ++a) value += point.basis[a] * q[a];
+  return value;
 }
 
 void CoupledSolve::ensureResponse(int p) {
@@ -131,6 +162,9 @@ void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<Poin
   couplings_ = couplings;
   pointCount_ = 0;
   const size_t m = couplings.size();
+  size_t tableSize = 16;
+  while (tableSize < 4 * m) tableSize *= 2;  // 2m points at most: at most half full
+  pointTable_.assign(tableSize, -1);
   pointA_.resize(m);
   pointB_.resize(m);
   trialChange_.resize(m);
@@ -140,7 +174,12 @@ void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<Poin
     pointB_[k] = pointIndex(c.rodB, c.sB);
     const Rod& a = *rods[static_cast<size_t>(c.rodA)];
     const Rod& b = *rods[static_cast<size_t>(c.rodB)];
-    trialChange_[k] = (a.trialVelocity(c.sA) - a.velocity(c.sA)) - (b.trialVelocity(c.sB) - b.velocity(c.sB));
+    const Point& pa = points_[static_cast<size_t>(pointA_[k])];
+    const Point& pb = points_[static_cast<size_t>(pointB_[k])];
+    // The velocities at the points from their basis values (what Rod::trialVelocity and
+    // Rod::velocity would evaluate again, in the same order: the same bits).
+    trialChange_[k] = (pointValue(pa, a.trialVelocities()) - pointValue(pa, a.velocities())) -
+                      (pointValue(pb, b.trialVelocities()) - pointValue(pb, b.velocities()));
   }
 
   acting_.clear();

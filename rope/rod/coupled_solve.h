@@ -92,6 +92,8 @@ class CoupledSolve {
     std::vector<double> response;
   };
   int pointIndex(int rod, double s);
+  size_t pointSlot(int rod, double s) const;  // pointTable_'s slot of (rod, s): its point or empty
+  static Vec3 pointValue(const Point& point, const PointList& field);  // sum_i b_i(s) field_i
   void ensureResponse(int p);
   // Y(p, q) = B_p P B_q^T (zero for different rods), from the response of whichever point's first
   // control point comes first (computed on demand).
@@ -106,6 +108,7 @@ class CoupledSolve {
   std::vector<PointCoupling> couplings_;
   std::vector<Point> points_;  // the first pointCount_ are in use; the rest keep their buffers
   int pointCount_ = 0;
+  std::vector<int> pointTable_;  // open addressing by (rod, s): index into points_, -1 empty
   std::vector<int> pointA_, pointB_;  // per coupling
   std::vector<Vec3> trialChange_;
   // The cache of zBlockCached, one column of m blocks per coupling l that has been asked for (those

@@ -93,13 +93,15 @@ void SymmetricBandedMatrix::forwardSubstitute(double* x, int firstRow) const {
 }
 
 void SymmetricBandedMatrix::backSubstitute(double* x) const {
+  // x_c = (y_c - sum_k L(k, c) x_k) / L(c, c), k from the largest down (see backSubstitute3).
   const int w = bandwidth_;
-  for (int r = size_ - 1; r >= 0; --r) {
-    const double value = x[r] / band_[static_cast<size_t>(index(r, r))];
-    x[r] = value;
-    const int c0 = std::max(0, r - w);
-    const double* row = &band_[static_cast<size_t>(index(r, c0))];
-    for (int c = c0; c < r; ++c) x[c] -= row[c - c0] * value;
+  const size_t stride = static_cast<size_t>(w);  // from L(k, c) to L(k - 1, c) in the band
+  for (int c = size_ - 1; c >= 0; --c) {
+    const int kLast = std::min(size_ - 1, c + w);
+    double sum = x[c];
+    const double* l = &band_[static_cast<size_t>(index(kLast, c))];
+    for (int k = kLast; k > c; --k, l -= stride) sum -= *l * x[k];
+    x[c] = sum / band_[static_cast<size_t>(index(c, c))];
   }
 }
 
@@ -125,24 +127,27 @@ void SymmetricBandedMatrix::forwardSubstitute3(double* x, int firstRow) const {
 }
 
 void SymmetricBandedMatrix::backSubstitute3(double* x, int lastRow) const {
+  // Row by row, x_c = (y_c - sum_k L(k, c) x_k) / L(c, c) with the sums in registers, k taken from
+  // the largest down: the same operations in the same order as subtracting each solved x_k from the
+  // rows above it as soon as it is known (backSubstitute), so the same bits, without a store per term.
   const int w = bandwidth_;
+  const size_t stride = static_cast<size_t>(w);  // from L(k, c) to L(k - 1, c) in the band
   double* x0 = x;
   double* x1 = x + size_;
   double* x2 = x + 2 * size_;
-  for (int r = size_ - 1; r >= lastRow; --r) {
-    const double diagonal = band_[static_cast<size_t>(index(r, r))];
-    const double value0 = x0[r] / diagonal, value1 = x1[r] / diagonal, value2 = x2[r] / diagonal;
-    x0[r] = value0;
-    x1[r] = value1;
-    x2[r] = value2;
-    const int c0 = std::max(lastRow, r - w);
-    const double* row = &band_[static_cast<size_t>(index(r, c0))];
-    for (int c = c0; c < r; ++c) {
-      const double l = row[c - c0];
-      x0[c] -= l * value0;
-      x1[c] -= l * value1;
-      x2[c] -= l * value2;
+  for (int c = size_ - 1; c >= lastRow; --c) {
+    const int kLast = std::min(size_ - 1, c + w);
+    double sum0 = x0[c], sum1 = x1[c], sum2 = x2[c];
+    const double* l = &band_[static_cast<size_t>(index(kLast, c))];
+    for (int k = kLast; k > c; --k, l -= stride) {
+      sum0 -= *l * x0[k];
+      sum1 -= *l * x1[k];
+      sum2 -= *l * x2[k];
     }
+    const double diagonal = band_[static_cast<size_t>(index(c, c))];
+    x0[c] = sum0 / diagonal;
+    x1[c] = sum1 / diagonal;
+    x2[c] = sum2 / diagonal;
   }
 }
 

@@ -135,6 +135,7 @@ void SymmetricBandedMatrix::backSubstitute3(double* x, int lastRow) const {
   double* x0 = x;
   double* x1 = x + size_;
   double* x2 = x + 2 * size_;
+  lastRow = std::max(lastRow, 0);
   for (int c = size_ - 1; c >= lastRow; --c) {
     const int kLast = std::min(size_ - 1, c + w);
     double sum0 = x0[c], sum1 = x1[c], sum2 = x2[c];

@@ -353,8 +353,22 @@ TEST(RodSplitStep, TrialLeavesTheRodUnchangedAndChangesInvalidateIt) {
   EXPECT_THROW(rod.commitTrial(), InvalidArgument);
   EXPECT_THROW(rod.trialVelocities(), InvalidArgument);
   std::vector<double> response(static_cast<size_t>(3 * rod.controlPointCount()));
+  std::vector<double> responses(3 * response.size());
   EXPECT_THROW(rod.trialImpulseResponse(0.5, 0, response.data()), InvalidArgument);
+  EXPECT_THROW(rod.trialImpulseResponsesOnward(0.5, responses.data()), InvalidArgument);
   ASSERT_TRUE(rod.solveTrial(0.01).ok);
+  // Both three-axis forms name a parameter off the rod or not a number, and keep the trial.
+  for (const double s : {-0.1, 2.0, std::numeric_limits<double>::quiet_NaN()}) {
+    for (const bool onward : {false, true}) {
+      try {
+        onward ? rod.trialImpulseResponsesOnward(s, responses.data()) : rod.trialImpulseResponses(s, responses.data());
+        ADD_FAILURE() << "accepted s = " << s << (onward ? " (onward)" : "");
+      } catch (const InvalidArgument& e) {
+        EXPECT_EQ(e.parameter(), "s") << e.what();
+      }
+    }
+  }
+  EXPECT_TRUE(rod.hasTrial());
   EXPECT_THROW(rod.trialImpulseResponse(0.5, 3, response.data()), InvalidArgument);
   EXPECT_THROW(rod.trialImpulseResponse(2.0, 0, response.data()), InvalidArgument);
   EXPECT_THROW(rod.markInteraction(-1.0), InvalidArgument);

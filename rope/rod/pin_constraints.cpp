@@ -164,18 +164,11 @@ void ConstrainedSolver::solveHomogeneous(const SymmetricBandedMatrix& factor, do
   factor.backSubstitute(x);
 }
 
-void ConstrainedSolver::solveHomogeneous3(const SymmetricBandedMatrix& factor, double* x, int firstRow) {
+void ConstrainedSolver::solveHomogeneous3(const SymmetricBandedMatrix& factor, double* x, int firstRow, int lastRow) {
   const int size = factor.size();
   factor.forwardSubstitute3(x, firstRow);
   for (int column = 0; column < 3; ++column) projectOutConstraints(size, x + column * size, firstRow);
-  factor.backSubstitute3(x);
-}
-
-void ConstrainedSolver::solveHomogeneous3Onward(const SymmetricBandedMatrix& factor, double* x, int firstRow) {
-  const int size = factor.size();
-  factor.forwardSubstitute3(x, firstRow);
-  for (int column = 0; column < 3; ++column) projectOutConstraints(size, x + column * size, firstRow);
-  factor.backSubstitute3(x, firstRow);
+  factor.backSubstitute3(x, lastRow);
 }
 
 void ConstrainedSolver::projectOutConstraints(int size, double* x, int firstRow) {

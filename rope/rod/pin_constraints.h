@@ -103,11 +103,10 @@ class ConstrainedSolver {
   // (firstRow) skips work for loads near the far end.
   void solveHomogeneous(const SymmetricBandedMatrix& factor, double* x, int firstRow = 0);
   // The same for three right-hand sides x[0..N), x[N..2N), x[2N..3N) at once (N = factor.size()),
-  // each with exactly the arithmetic of solveHomogeneous.
-  void solveHomogeneous3(const SymmetricBandedMatrix& factor, double* x, int firstRow = 0);
-  // solveHomogeneous3 with only the rows from firstRow on computed (the rows before it unspecified):
-  // what a response read at rows at or after its own load needs, for less back substitution.
-  void solveHomogeneous3Onward(const SymmetricBandedMatrix& factor, double* x, int firstRow);
+  // each with exactly the arithmetic of solveHomogeneous. With lastRow > 0 only the rows from lastRow
+  // on are computed (the rows before it unspecified): what a response read at rows at or after its
+  // own load needs, for less back substitution.
+  void solveHomogeneous3(const SymmetricBandedMatrix& factor, double* x, int firstRow = 0, int lastRow = 0);
   // Whether solveHomogeneous may be called (a solve() succeeded and this is not a copy made since).
   bool ready() const { return ready_; }
 

@@ -603,12 +603,7 @@ void Rod::impulseResponses(double s, double* responses, bool onward) const {
       for (int c = 0; c < 3; ++c) response[3 * (first + a) + c] = basis.d[0][static_cast<size_t>(a)] * direction[c];
   }
   // The scratch solver is logically const here: it only reuses the trial's Schur factor.
-  ConstrainedSolver& solver = const_cast<ConstrainedSolver&>(solver_);
-  if (onward) {
-    solver.solveHomogeneous3Onward(system_, responses, 3 * first);
-  } else {
-    solver.solveHomogeneous3(system_, responses, 3 * first);
-  }
+  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous3(system_, responses, 3 * first, onward ? 3 * first : 0);
 }
 
 void Rod::trialGeneralizedResponse(double* impulses) const {

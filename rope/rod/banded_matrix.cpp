@@ -13,6 +13,7 @@ void SymmetricBandedMatrix::reset(int blockCount, int blockSize, int blockBandwi
   bandwidth_ = blockSize * (blockBandwidth + 1) - 1;
   const size_t needed = static_cast<size_t>(size_) * static_cast<size_t>(bandwidth_ + 1);
   if (band_.size() < needed) band_.resize(needed);
+  if (column_.size() < static_cast<size_t>(bandwidth_)) column_.resize(static_cast<size_t>(bandwidth_));
   setZero();
 }
 
@@ -58,23 +59,31 @@ void SymmetricBandedMatrix::multiply(const double* x, double* y) const {
 }
 
 bool SymmetricBandedMatrix::factorize() {
+  // Right-looking: column c of L, then its rank-one update of the trailing band,
+  // A(i, j) -= L(i, c) L(j, c) for c < j <= i <= c + w. Each entry receives its terms in the order of
+  // the textbook left-looking sums (k = c increasing), so the factor is bitwise that of
+  // L(r, c) = (A(r, c) - sum_k L(r, k) L(c, k)) / L(c, c). Why not left-looking: there every entry is
+  // one chain of dependent subtractions (~4 cycles each); here the updates of a column are
+  // independent and contiguous along each row, so they pipeline and vectorise (about 3x faster on
+  // the rod's w = 11).
   const int w = bandwidth_;
-  for (int r = 0; r < size_; ++r) {
-    const int c0 = std::max(0, r - w);
-    double* rowR = &band_[static_cast<size_t>(index(r, c0))];  // rowR[c - c0] = L(r, c)
-    for (int c = c0; c <= r; ++c) {
-      // L(r, c) = (A(r, c) - sum_k L(r, k) L(c, k)) / L(c, c), k from max(c0, c - w) = c0 to c - 1.
-      const int k0 = std::max(c0, c - w);
-      const double* rowC = &band_[static_cast<size_t>(index(c, k0))];  // rowC[k - k0] = L(c, k)
-      double sum = rowR[c - c0];
-      for (int k = k0; k < c; ++k) sum -= rowR[k - c0] * rowC[k - k0];
-      if (c < r) {
-        rowR[c - c0] = sum / band_[static_cast<size_t>(index(c, c))];
-      } else {
-        // isfinite first: an ordered comparison with NaN would raise FE_INVALID.
-        if (!std::isfinite(sum) || sum <= 0.0) return false;
-        rowR[c - c0] = std::sqrt(sum);
-      }
+  double* column = column_.data();  // column[i - c - 1] = L(i, c)
+  for (int c = 0; c < size_; ++c) {
+    double& diagonal = band_[static_cast<size_t>(index(c, c))];
+    const double pivot = diagonal;
+    // isfinite first: an ordered comparison with NaN would raise FE_INVALID.
+    if (!std::isfinite(pivot) || pivot <= 0.0) return false;
+    diagonal = std::sqrt(pivot);
+    const int count = std::min(size_ - 1, c + w) - c;  // rows below c inside the band
+    for (int a = 0; a < count; ++a) {
+      double& entry = band_[static_cast<size_t>(index(c + 1 + a, c))];
+      entry /= diagonal;
+      column[a] = entry;
+    }
+    for (int a = 0; a < count; ++a) {
+      const double lower = column[a];
+      double* row = &band_[static_cast<size_t>(index(c + 1 + a, c + 1))];  // row[b] = A(c + 1 + a, c + 1 + b)
+      for (int b = 0; b <= a; ++b) row[b] -= lower * column[b];
     }
   }
   factorized_ = true;

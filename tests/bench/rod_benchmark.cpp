@@ -4,6 +4,9 @@
 // criteria are still evaluated each step.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+
+#include "rope/rod/banded_matrix.h"
 #include "rope/rod/rod.h"
 
 namespace {
@@ -42,5 +45,29 @@ BENCHMARK(BM_RodStep)->RangeMultiplier(4)->Range(16, 4096)->Complexity(benchmark
 // The same step with backward Euler, for the cost of BDF2's history (the default above) in one run.
 void BM_RodStepBackwardEuler(benchmark::State& state) { stepRope(state, rope::TimeIntegrator::kBackwardEuler); }
 BENCHMARK(BM_RodStepBackwardEuler)->RangeMultiplier(4)->Range(16, 4096)->Complexity(benchmark::oN)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+namespace {
+
+// Factorises the rod's system shape (3 x 3 blocks, block half bandwidth 3: w = 11) of state.range(0)
+// control points, a diagonally dominant band refilled before each factorisation (refill included).
+void BM_BandedFactorize(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  rope::SymmetricBandedMatrix matrix;
+  matrix.reset(n, 3, 3);
+  const int w = matrix.halfBandwidth();
+  for (int r = 0; r < matrix.size(); ++r)
+    for (int c = std::max(0, r - w); c <= r; ++c) matrix.at(r, c) = r == c ? 4.0 * w : 1.0 / (1 + r - c + (r % 7));
+  const rope::SymmetricBandedMatrix original = matrix;
+  for (auto _ : state) {
+    matrix = original;
+    const bool ok = matrix.factorize();
+    benchmark::DoNotOptimize(ok);
+    if (!ok) state.SkipWithError("not positive definite");
+  }
+  state.SetComplexityN(n);
+}
+BENCHMARK(BM_BandedFactorize)->RangeMultiplier(4)->Range(16, 1024)->Complexity(benchmark::oN)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -71,6 +71,29 @@ TEST(SymmetricBandedMatrix, SolveMatchesDense) {
   }
 }
 
+TEST(SymmetricBandedMatrix, FactorIsBitwiseTheTextbookRowByRowOne) {
+  // factorize() updates the trailing band column by column; every entry must still receive its terms
+  // in the order of L(r, c) = (A(r, c) - sum_{k ascending} L(r, k) L(c, k)) / L(c, c), so that the
+  // rounding (and every golden hash built on it) is that of the textbook form.
+  for (int blockSize : {1, 3}) {
+    SymmetricBandedMatrix banded;
+    const Eigen::MatrixXd dense = randomBanded(19, blockSize, 3, 21u + static_cast<unsigned>(blockSize), banded);
+    const int n = static_cast<int>(dense.rows());
+    const int w = banded.halfBandwidth();
+    Eigen::MatrixXd lower = Eigen::MatrixXd::Zero(n, n);
+    for (int r = 0; r < n; ++r) {
+      for (int c = std::max(0, r - w); c <= r; ++c) {
+        double sum = dense(r, c);
+        for (int k = std::max(0, r - w); k < c; ++k) sum -= lower(r, k) * lower(c, k);
+        lower(r, c) = c < r ? sum / lower(c, c) : std::sqrt(sum);
+      }
+    }
+    ASSERT_TRUE(banded.factorize());
+    for (int r = 0; r < n; ++r)
+      for (int c = std::max(0, r - w); c <= r; ++c) ASSERT_EQ(banded.entry(r, c), lower(r, c)) << r << ", " << c;
+  }
+}
+
 TEST(SymmetricBandedMatrix, ForwardSubstitutionSkipsLeadingZeros) {
   SymmetricBandedMatrix banded;
   const Eigen::MatrixXd dense = randomBanded(12, 3, 3, 77u, banded);

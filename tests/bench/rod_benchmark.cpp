@@ -46,10 +46,6 @@ BENCHMARK(BM_RodStep)->RangeMultiplier(4)->Range(16, 4096)->Complexity(benchmark
 void BM_RodStepBackwardEuler(benchmark::State& state) { stepRope(state, rope::TimeIntegrator::kBackwardEuler); }
 BENCHMARK(BM_RodStepBackwardEuler)->RangeMultiplier(4)->Range(16, 4096)->Complexity(benchmark::oN)->Unit(benchmark::kMicrosecond);
 
-}  // namespace
-
-namespace {
-
 // Factorises the rod's system shape (3 x 3 blocks, block half bandwidth 3: w = 11) of state.range(0)
 // control points, a diagonally dominant band refilled before each factorisation (refill included).
 void BM_BandedFactorize(benchmark::State& state) {

@@ -237,11 +237,11 @@ bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vect
   }
   llt_.compute(system_);  // reads the lower triangle
   if (llt_.info() != Eigen::Success) return false;
-  const Eigen::VectorXd u = llt_.solve(rhs_);
-  if (!u.allFinite()) return false;
-  Eigen::VectorXd p = impulse_;
-  for (int i = 0; i < a; ++i) p.segment<3>(3 * i) -= roots_[static_cast<size_t>(i)] * u.segment<3>(3 * i);
-  for (int i = 0; i < a; ++i) impulses[static_cast<size_t>(acting_[static_cast<size_t>(i)])] = p.segment<3>(3 * i);
+  u_ = llt_.solve(rhs_);
+  if (!u_.allFinite()) return false;
+  p_ = impulse_;
+  for (int i = 0; i < a; ++i) p_.segment<3>(3 * i) -= roots_[static_cast<size_t>(i)] * u_.segment<3>(3 * i);
+  for (int i = 0; i < a; ++i) impulses[static_cast<size_t>(acting_[static_cast<size_t>(i)])] = p_.segment<3>(3 * i);
   deltaImpulses_ = impulses;
   return true;
 }

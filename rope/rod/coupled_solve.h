@@ -122,6 +122,7 @@ class CoupledSolve {
   Eigen::MatrixXd system_;   // I + L^T Z L over the acting couplings (lower triangle)
   Eigen::MatrixXd zActing_;  // Z over the acting couplings
   Eigen::VectorXd rhs_, impulse_;
+  Eigen::VectorXd u_, p_;  // the solve's u and p (kept: no allocation while the acting count stays)
   std::vector<Eigen::Matrix3d> roots_;  // L with W = L L^T, per acting coupling
   Eigen::LLT<Eigen::MatrixXd> llt_;
   // Every rod's velocity change dv = P J^T p for the impulses (per rod 3n, m/s), and which rods it

@@ -91,8 +91,12 @@ bool SymmetricBandedMatrix::factorize() {
 }
 
 void SymmetricBandedMatrix::forwardSubstitute(double* x, int firstRow) const {
+  forwardSubstituteRows(x, firstRow, size_);
+}
+
+void SymmetricBandedMatrix::forwardSubstituteRows(double* x, int firstRow, int endRow) const {
   const int w = bandwidth_;
-  for (int r = firstRow; r < size_; ++r) {
+  for (int r = firstRow; r < endRow; ++r) {
     const int c0 = std::max(firstRow, r - w);
     const double* row = &band_[static_cast<size_t>(r) * static_cast<size_t>(w + 1)];  // row[c - r + w] = L(r, c)
     double sum = x[r];
@@ -115,23 +119,41 @@ void SymmetricBandedMatrix::backSubstitute(double* x) const {
 }
 
 void SymmetricBandedMatrix::forwardSubstitute3(double* x, int firstRow) const {
+  double* const columns[3] = {x, x + size_, x + 2 * size_};
+  const int firstRows[3] = {firstRow, firstRow, firstRow};
+  forwardSubstituteColumns(columns, firstRows, 3);
+}
+
+void SymmetricBandedMatrix::forwardSubstituteColumns(double* const* columns, const int* firstRows, int count) const {
+  // Each column alone up to the row from which every column's sums run over the whole band (w rows
+  // past the last first row), then all of them together: one pass over the factor for the rest, and
+  // independent chains of subtractions in flight. A row's terms still come in increasing c, so every
+  // column gets the bits of its one-column substitution.
+  int joint = 0;
+  for (int k = 0; k < count; ++k) joint = std::max(joint, firstRows[k]);
+  joint = std::min(size_, joint + bandwidth_);
+  for (int k = 0; k < count; ++k) forwardSubstituteRows(columns[k], firstRows[k], joint);
+  if (count == 3) {
+    forwardSubstituteJoint<3>(columns, joint);
+  } else if (count == 2) {
+    forwardSubstituteJoint<2>(columns, joint);
+  } else if (count == 1) {
+    forwardSubstituteJoint<1>(columns, joint);
+  }
+}
+
+template <int kCount>
+void SymmetricBandedMatrix::forwardSubstituteJoint(double* const* columns, int joint) const {
   const int w = bandwidth_;
-  double* x0 = x;
-  double* x1 = x + size_;
-  double* x2 = x + 2 * size_;
-  for (int r = firstRow; r < size_; ++r) {
-    const int c0 = std::max(firstRow, r - w);
+  for (int r = joint; r < size_; ++r) {
     const double* row = &band_[static_cast<size_t>(r) * static_cast<size_t>(w + 1)];  // row[c - r + w] = L(r, c)
-    double sum0 = x0[r], sum1 = x1[r], sum2 = x2[r];
-    for (int c = c0; c < r; ++c) {
+    double sum[kCount];
+    for (int k = 0; k < kCount; ++k) sum[k] = columns[k][r];
+    for (int c = r - w; c < r; ++c) {
       const double l = row[c - r + w];
-      sum0 -= l * x0[c];
-      sum1 -= l * x1[c];
-      sum2 -= l * x2[c];
+      for (int k = 0; k < kCount; ++k) sum[k] -= l * columns[k][c];
     }
-    x0[r] = sum0 / row[w];
-    x1[r] = sum1 / row[w];
-    x2[r] = sum2 / row[w];
+    for (int k = 0; k < kCount; ++k) columns[k][r] = sum[k] / row[w];
   }
 }
 

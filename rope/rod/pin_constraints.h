@@ -114,6 +114,10 @@ class ConstrainedSolver {
   // Between the substitutions of solveHomogeneous: y <- y - Z lambda with the multipliers
   // lambda = (Z^T Z)^-1 Z^T y that keep G dv = 0 (nothing without constraints).
   void projectOutConstraints(int size, double* x, int firstRow);
+  // The same on three columns x[0..N), x[N..2N), x[2N..3N), each with exactly its arithmetic.
+  void projectOutConstraints3(int size, double* x, int firstRow);
+  // z_ <- L^-1 z_ on every constraint column, from its first row (start_).
+  void substituteColumns(const SymmetricBandedMatrix& factor);
   int columns_ = 0;
   bool ready_ = false;
   std::vector<int> owner_;       // constraint (index into rows) of each column
@@ -122,6 +126,8 @@ class ConstrainedSolver {
   std::vector<int> start_;       // first non-zero row of each column
   Eigen::MatrixXd schur_;
   Eigen::VectorXd lambda_;
+  Eigen::MatrixXd lambdas_;      // projectOutConstraints3's multipliers, one column per right-hand side
+  std::vector<int> order_;       // the columns by first row (substituteColumns)
   Eigen::LLT<Eigen::MatrixXd> llt_;
 };
 

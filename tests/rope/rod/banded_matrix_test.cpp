@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace rope {
 namespace {
@@ -133,6 +134,31 @@ TEST(SymmetricBandedMatrix, ThreeColumnSubstitutionsAreTheOneColumnOnesAndStopWh
   }
   // And the substitutions solve the system.
   EXPECT_LT((dense * single - columns).norm(), 1e-12 * columns.norm());
+}
+
+// Constraint columns substituted together, each from its own first row (a few rows apart, or more than
+// a half bandwidth apart), are each the one-column substitution, bit for bit.
+TEST(SymmetricBandedMatrix, ColumnsSubstitutedTogetherAreEachTheirOwnSubstitution) {
+  SymmetricBandedMatrix banded;
+  const Eigen::MatrixXd dense = randomBanded(12, 3, 3, 57u, banded);
+  ASSERT_TRUE(banded.factorize());
+  const int n = static_cast<int>(dense.rows());
+  const int w = banded.halfBandwidth();
+  const std::vector<std::vector<int>> cases = {{0, 1, 2}, {2, 0, 1}, {3, 3 + w, 20}, {5}, {7, 9}, {0, n - 1, n - 2}, {n, 4}};
+  for (const std::vector<int>& firstRows : cases) {
+    const int count = static_cast<int>(firstRows.size());
+    Eigen::MatrixXd columns = Eigen::MatrixXd::Zero(n, count);
+    for (int k = 0; k < count; ++k)
+      for (int r = firstRows[static_cast<size_t>(k)]; r < n; ++r) columns(r, k) = std::cos(0.3 + r + 5.0 * k);
+    Eigen::MatrixXd single = columns;
+    for (int k = 0; k < count; ++k) banded.forwardSubstitute(single.col(k).data(), firstRows[static_cast<size_t>(k)]);
+    Eigen::MatrixXd together = columns;
+    double* pointers[3];
+    for (int k = 0; k < count; ++k) pointers[k] = together.col(k).data();
+    banded.forwardSubstituteColumns(pointers, firstRows.data(), count);
+    for (int k = 0; k < count; ++k)
+      for (int r = 0; r < n; ++r) EXPECT_EQ(together(r, k), single(r, k)) << "column " << k << " of " << count << " row " << r;
+  }
 }
 
 TEST(SymmetricBandedMatrix, BlocksAddSymmetrically) {

@@ -98,6 +98,41 @@ TEST(ConstrainedSolver, MatchesTheDenseKktSolution) {
                         row(10, {0.0, 0.0, 0.0, 1.0}, Vec3(-0.5, 0.0, 0.25))});
 }
 
+// Three right-hand sides solved together (a contact point's impulse responses) are each the one-column
+// homogeneous solve, bit for bit, with constraint columns that share passes (a pin's three rows) and
+// ones that do not.
+TEST(ConstrainedSolver, ThreeColumnHomogeneousSolvesAreTheOneColumnOnes) {
+  SymmetricBandedMatrix banded;
+  const Eigen::MatrixXd S = makeSystem(14, 3, banded);
+  const int n = static_cast<int>(S.rows());
+  ASSERT_TRUE(banded.factorize());
+  ConstraintRows clamp = row(0, {0.0, 0.7, 0.2, 0.1}, Vec3::Zero());
+  clamp.rowCount = 2;
+  clamp.directions[0] = Vec3(0.0, 0.6, 0.8);
+  clamp.directions[1] = Vec3(1.0, 0.0, 0.0);
+  const std::vector<ConstraintRows> rows = {row(0, {1.0, 0.0, 0.0, 0.0}, Vec3(0.1, -0.2, 0.3)), clamp,
+                                            row(10, {0.0, 0.0, 0.0, 1.0}, Vec3(-0.5, 0.0, 0.25))};
+  ConstrainedSolver solver;
+  Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0);
+  ASSERT_TRUE(solver.solve(banded, rows, x.data()));
+  std::vector<Eigen::VectorXd> gradients;
+  std::vector<double> values;
+  denseRows(rows, n, gradients, values);
+  for (const int firstRow : {0, 4, 21}) {
+    Eigen::MatrixXd columns = Eigen::MatrixXd::Zero(n, 3);
+    for (int c = 0; c < 3; ++c)
+      for (int r = firstRow; r < firstRow + 6; ++r) columns(r, c) = std::sin(2.0 + r + 3.0 * c);
+    Eigen::MatrixXd single = columns;
+    for (int c = 0; c < 3; ++c) solver.solveHomogeneous(banded, single.col(c).data(), firstRow);
+    Eigen::MatrixXd together = columns;
+    solver.solveHomogeneous3(banded, together.data(), firstRow);
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < n; ++r) EXPECT_EQ(together(r, c), single(r, c)) << "firstRow " << firstRow << " column " << c << " row " << r;
+      for (const Eigen::VectorXd& g : gradients) EXPECT_NEAR(g.dot(together.col(c)), 0.0, 1e-12);
+    }
+  }
+}
+
 TEST(ConstrainedSolver, DependentConstraintsAreReported) {
   SymmetricBandedMatrix banded;
   makeSystem(8, 3, banded);

@@ -197,13 +197,14 @@ void ConstrainedSolver::solveHomogeneous(const SymmetricBandedMatrix& factor, do
 void ConstrainedSolver::solveHomogeneous3(const SymmetricBandedMatrix& factor, double* x, int firstRow, int lastRow) {
   const int size = factor.size();
   factor.forwardSubstitute3(x, firstRow);
-  projectOutConstraints3(size, x, firstRow);
+  projectOutConstraints3(size, x, firstRow, std::max(lastRow, 0));
   factor.backSubstitute3(x, lastRow);
 }
 
-void ConstrainedSolver::projectOutConstraints3(int size, double* x, int firstRow) {
+void ConstrainedSolver::projectOutConstraints3(int size, double* x, int firstRow, int lastRow) {
   // projectOutConstraints on each of the three columns, each constraint column read once for all
-  // three: the same sums in the same order, three independent chains instead of one.
+  // three: the same sums in the same order, three independent chains instead of one. The rows before
+  // lastRow are not corrected: the back substitution down to lastRow never reads them.
   if (columns_ == 0) return;
   double* const x0 = x;
   double* const x1 = x + size;
@@ -228,7 +229,7 @@ void ConstrainedSolver::projectOutConstraints3(int size, double* x, int firstRow
   for (int r = 0; r < columns_; ++r) {
     const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
     const double l0 = lambdas_(r, 0), l1 = lambdas_(r, 1), l2 = lambdas_(r, 2);
-    for (int i = start_[static_cast<size_t>(r)]; i < size; ++i) {
+    for (int i = std::max(start_[static_cast<size_t>(r)], lastRow); i < size; ++i) {
       x0[i] -= zr[i] * l0;
       x1[i] -= zr[i] * l1;
       x2[i] -= zr[i] * l2;

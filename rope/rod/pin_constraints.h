@@ -114,8 +114,9 @@ class ConstrainedSolver {
   // Between the substitutions of solveHomogeneous: y <- y - Z lambda with the multipliers
   // lambda = (Z^T Z)^-1 Z^T y that keep G dv = 0 (nothing without constraints).
   void projectOutConstraints(int size, double* x, int firstRow);
-  // The same on three columns x[0..N), x[N..2N), x[2N..3N), each with exactly its arithmetic.
-  void projectOutConstraints3(int size, double* x, int firstRow);
+  // The same on three columns x[0..N), x[N..2N), x[2N..3N), each with exactly its arithmetic on the
+  // rows from lastRow on (the rows before it are left as they are: solveHomogeneous3 does not read them).
+  void projectOutConstraints3(int size, double* x, int firstRow, int lastRow);
   // z_ <- L^-1 z_ on every constraint column, from its first row (start_).
   void substituteColumns(const SymmetricBandedMatrix& factor);
   int columns_ = 0;

@@ -130,6 +130,11 @@ TEST(ConstrainedSolver, ThreeColumnHomogeneousSolvesAreTheOneColumnOnes) {
       for (int r = 0; r < n; ++r) EXPECT_EQ(together(r, c), single(r, c)) << "firstRow " << firstRow << " column " << c << " row " << r;
       for (const Eigen::VectorXd& g : gradients) EXPECT_NEAR(g.dot(together.col(c)), 0.0, 1e-12);
     }
+    // Onward (a response read only at rows from its own load on): the same bits on those rows.
+    Eigen::MatrixXd onward = columns;
+    solver.solveHomogeneous3(banded, onward.data(), firstRow, firstRow);
+    for (int c = 0; c < 3; ++c)
+      for (int r = firstRow; r < n; ++r) EXPECT_EQ(onward(r, c), single(r, c)) << "onward from " << firstRow << " column " << c << " row " << r;
   }
 }
 

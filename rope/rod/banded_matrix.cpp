@@ -29,15 +29,6 @@ double SymmetricBandedMatrix::entry(int row, int col) const {
   return at(row, col);
 }
 
-void SymmetricBandedMatrix::addBlock(int i, int j, const Eigen::Matrix3d& block) {
-  const int r0 = 3 * i;
-  const int c0 = 3 * j;
-  for (int a = 0; a < 3; ++a) {
-    const int bEnd = (i == j) ? a + 1 : 3;
-    for (int b = 0; b < bEnd; ++b) at(r0 + a, c0 + b) += block(a, b);
-  }
-}
-
 void SymmetricBandedMatrix::addScaledIdentity(int i, int j, double value) {
   const int r0 = blockSize_ * i;
   const int c0 = blockSize_ * j;

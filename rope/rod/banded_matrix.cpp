@@ -116,6 +116,10 @@ void SymmetricBandedMatrix::forwardSubstitute3(double* x, int firstRow) const {
 }
 
 void SymmetricBandedMatrix::forwardSubstituteColumns(double* const* columns, const int* firstRows, int count) const {
+  for (int k = 0; k < count; k += 3) forwardSubstituteChunk(columns + k, firstRows + k, std::min(3, count - k));
+}
+
+void SymmetricBandedMatrix::forwardSubstituteChunk(double* const* columns, const int* firstRows, int count) const {
   // Each column alone up to the row from which every column's sums run over the whole band (w rows
   // past the last first row), then all of them together: one pass over the factor for the rest, and
   // independent chains of subtractions in flight. A row's terms still come in increasing c, so every

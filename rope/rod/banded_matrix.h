@@ -62,9 +62,9 @@ class SymmetricBandedMatrix {
   // impulses along x, y, z): one pass over the factor instead of three, and three independent
   // chains of divisions in flight. Each column's arithmetic is exactly that of the one-column form.
   void forwardSubstitute3(double* x, int firstRow = 0) const;
-  // The same on `count` (1 to 3) columns anywhere, each of N, each from its own first row (constraint
-  // columns that start a few rows apart): each column's arithmetic is exactly that of
-  // forwardSubstitute(columns[k], firstRows[k]).
+  // The same on `count` columns anywhere, each of N, each from its own first row (constraint columns
+  // that start a few rows apart), three at a time in the order given: each column's arithmetic is
+  // exactly that of forwardSubstitute(columns[k], firstRows[k]). count <= 0: nothing.
   void forwardSubstituteColumns(double* const* columns, const int* firstRows, int count) const;
   // x <- L^-T x on the rows from lastRow on; the rows before it are left partly updated (unspecified).
   // Those rows feed none of the later ones, so a caller that reads only rows >= lastRow (a response
@@ -75,6 +75,8 @@ class SymmetricBandedMatrix {
 
  private:
   int index(int row, int col) const { return row * (bandwidth_ + 1) + (col - row + bandwidth_); }
+  // forwardSubstituteColumns on at most three columns.
+  void forwardSubstituteChunk(double* const* columns, const int* firstRows, int count) const;
   // Rows [firstRow, endRow) of forwardSubstitute(x, firstRow).
   void forwardSubstituteRows(double* x, int firstRow, int endRow) const;
   // Rows [joint, N) of forwardSubstitute on kCount columns whose first rows all lie at or before

@@ -144,7 +144,8 @@ TEST(SymmetricBandedMatrix, ColumnsSubstitutedTogetherAreEachTheirOwnSubstitutio
   ASSERT_TRUE(banded.factorize());
   const int n = static_cast<int>(dense.rows());
   const int w = banded.halfBandwidth();
-  const std::vector<std::vector<int>> cases = {{0, 1, 2}, {2, 0, 1}, {3, 3 + w, 20}, {5}, {7, 9}, {0, n - 1, n - 2}, {n, 4}};
+  const std::vector<std::vector<int>> cases = {{0, 1, 2}, {2, 0, 1}, {3, 3 + w, 20}, {5}, {7, 9},
+                                               {0, n - 1, n - 2}, {n, 4}, {0, 1, 2, 30, 31}};
   for (const std::vector<int>& firstRows : cases) {
     const int count = static_cast<int>(firstRows.size());
     Eigen::MatrixXd columns = Eigen::MatrixXd::Zero(n, count);
@@ -153,7 +154,7 @@ TEST(SymmetricBandedMatrix, ColumnsSubstitutedTogetherAreEachTheirOwnSubstitutio
     Eigen::MatrixXd single = columns;
     for (int k = 0; k < count; ++k) banded.forwardSubstitute(single.col(k).data(), firstRows[static_cast<size_t>(k)]);
     Eigen::MatrixXd together = columns;
-    double* pointers[3];
+    double* pointers[5];
     for (int k = 0; k < count; ++k) pointers[k] = together.col(k).data();
     banded.forwardSubstituteColumns(pointers, firstRows.data(), count);
     for (int k = 0; k < count; ++k)

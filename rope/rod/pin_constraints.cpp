@@ -190,67 +190,44 @@ void ConstrainedSolver::substituteColumns(const SymmetricBandedMatrix& factor) {
 
 void ConstrainedSolver::solveHomogeneous(const SymmetricBandedMatrix& factor, double* x, int firstRow) {
   factor.forwardSubstitute(x, firstRow);
-  projectOutConstraints(factor.size(), x, firstRow);
+  double* const columns[1] = {x};
+  projectOutConstraints<1>(factor.size(), columns, firstRow, 0);
   factor.backSubstitute(x);
 }
 
 void ConstrainedSolver::solveHomogeneous3(const SymmetricBandedMatrix& factor, double* x, int firstRow, int lastRow) {
   const int size = factor.size();
   factor.forwardSubstitute3(x, firstRow);
-  projectOutConstraints3(size, x, firstRow, std::max(lastRow, 0));
+  double* const columns[3] = {x, x + size, x + 2 * size};
+  projectOutConstraints<3>(size, columns, firstRow, std::max(lastRow, 0));
   factor.backSubstitute3(x, lastRow);
 }
 
-void ConstrainedSolver::projectOutConstraints3(int size, double* x, int firstRow, int lastRow) {
-  // projectOutConstraints on each of the three columns, each constraint column read once for all
-  // three: the same sums in the same order, three independent chains instead of one. The rows before
-  // lastRow are not corrected: the back substitution down to lastRow never reads them.
+template <int kCount>
+void ConstrainedSolver::projectOutConstraints(int size, double* const* x, int firstRow, int lastRow) {
+  // y <- y - Z lambda with lambda = (Z^T Z)^-1 Z^T y, the multipliers that keep G dv = 0, on kCount
+  // right-hand sides at once: each constraint column is read once for all of them, and their sums
+  // are independent chains (each in the one-column order, so the same bits). Rows before lastRow are
+  // not corrected (solveHomogeneous3's back substitution stops at lastRow and never reads them).
   if (columns_ == 0) return;
-  double* const x0 = x;
-  double* const x1 = x + size;
-  double* const x2 = x + 2 * size;
   for (int r = 0; r < columns_; ++r) {
     const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
-    double p0 = 0.0, p1 = 0.0, p2 = 0.0;
-    for (int i = std::max(start_[static_cast<size_t>(r)], firstRow); i < size; ++i) {
-      p0 += zr[i] * x0[i];
-      p1 += zr[i] * x1[i];
-      p2 += zr[i] * x2[i];
-    }
-    lambdas_(r, 0) = p0;
-    lambdas_(r, 1) = p1;
-    lambdas_(r, 2) = p2;
+    double projected[kCount] = {};
+    for (int i = std::max(start_[static_cast<size_t>(r)], firstRow); i < size; ++i)
+      for (int k = 0; k < kCount; ++k) projected[k] += zr[i] * x[k][i];
+    for (int k = 0; k < kCount; ++k) lambdas_(r, k) = projected[k];
   }
-  for (int column = 0; column < 3; ++column) {
-    lambda_ = lambdas_.col(column);
-    lambda_ = llt_.solve(lambda_);  // per column, as projectOutConstraints solves it
-    lambdas_.col(column) = lambda_;
+  for (int k = 0; k < kCount; ++k) {
+    lambda_ = lambdas_.col(k);
+    lambda_ = llt_.solve(lambda_);  // per right-hand side, whatever kCount
+    lambdas_.col(k) = lambda_;
   }
   for (int r = 0; r < columns_; ++r) {
     const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
-    const double l0 = lambdas_(r, 0), l1 = lambdas_(r, 1), l2 = lambdas_(r, 2);
-    for (int i = std::max(start_[static_cast<size_t>(r)], lastRow); i < size; ++i) {
-      x0[i] -= zr[i] * l0;
-      x1[i] -= zr[i] * l1;
-      x2[i] -= zr[i] * l2;
-    }
-  }
-}
-
-void ConstrainedSolver::projectOutConstraints(int size, double* x, int firstRow) {
-  if (columns_ == 0) return;
-  // lambda = (Z^T Z)^-1 Z^T y, the multipliers that keep G dv = 0.
-  for (int r = 0; r < columns_; ++r) {
-    const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
-    double projected = 0.0;
-    for (int i = std::max(start_[static_cast<size_t>(r)], firstRow); i < size; ++i) projected += zr[i] * x[i];
-    lambda_(r) = projected;
-  }
-  lambda_ = llt_.solve(lambda_);
-  for (int r = 0; r < columns_; ++r) {
-    const double* zr = &z_[static_cast<size_t>(r) * static_cast<size_t>(size)];
-    const double l = lambda_(r);
-    for (int i = start_[static_cast<size_t>(r)]; i < size; ++i) x[i] -= zr[i] * l;
+    double l[kCount];
+    for (int k = 0; k < kCount; ++k) l[k] = lambdas_(r, k);
+    for (int i = std::max(start_[static_cast<size_t>(r)], lastRow); i < size; ++i)
+      for (int k = 0; k < kCount; ++k) x[k][i] -= zr[i] * l[k];
   }
 }
 

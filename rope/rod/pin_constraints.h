@@ -111,12 +111,11 @@ class ConstrainedSolver {
   bool ready() const { return ready_; }
 
  private:
-  // Between the substitutions of solveHomogeneous: y <- y - Z lambda with the multipliers
-  // lambda = (Z^T Z)^-1 Z^T y that keep G dv = 0 (nothing without constraints).
-  void projectOutConstraints(int size, double* x, int firstRow);
-  // The same on three columns x[0..N), x[N..2N), x[2N..3N), each with exactly its arithmetic on the
-  // rows from lastRow on (the rows before it are left as they are: solveHomogeneous3 does not read them).
-  void projectOutConstraints3(int size, double* x, int firstRow, int lastRow);
+  // Between the substitutions of solveHomogeneous (kCount = 1) and solveHomogeneous3 (3): each y <- y - Z lambda
+  // with the multipliers lambda = (Z^T Z)^-1 Z^T y that keep G dv = 0, on the rows from lastRow on
+  // (nothing without constraints).
+  template <int kCount>
+  void projectOutConstraints(int size, double* const* x, int firstRow, int lastRow);
   // z_ <- L^-1 z_ on every constraint column, from its first row (start_).
   void substituteColumns(const SymmetricBandedMatrix& factor);
   int columns_ = 0;
@@ -127,7 +126,7 @@ class ConstrainedSolver {
   std::vector<int> start_;       // first non-zero row of each column
   Eigen::MatrixXd schur_;
   Eigen::VectorXd lambda_;
-  Eigen::MatrixXd lambdas_;      // projectOutConstraints3's multipliers, one column per right-hand side
+  Eigen::MatrixXd lambdas_;      // projectOutConstraints' multipliers, one column per right-hand side
   std::vector<int> order_;       // the columns by first row (substituteColumns)
   Eigen::LLT<Eigen::MatrixXd> llt_;
 };

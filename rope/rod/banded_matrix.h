@@ -8,6 +8,7 @@
 // reported, never turned into NaN.
 // Not API: installed only because rope/rod/rod.h holds one; it may change in any release.
 
+#include <cstddef>
 #include <vector>
 
 #include <Eigen/Core>
@@ -19,7 +20,8 @@ class SymmetricBandedMatrix {
   void prefetch() const;  // cache hints for the band (rope/common/prefetch.h)
   SymmetricBandedMatrix() = default;
   // Zero matrix of blockCount x blockCount blocks of size blockSize with block half bandwidth
-  // blockBandwidth. Reuses the storage when it is big enough (no allocation in a steady state).
+  // blockBandwidth. Reuses the storage's capacity when it is big enough (no allocation in a steady
+  // state); holds only the new band.
   void reset(int blockCount, int blockSize, int blockBandwidth);
   void setZero();
 
@@ -27,6 +29,8 @@ class SymmetricBandedMatrix {
   int halfBandwidth() const { return bandwidth_; }   // w
   int blockSize() const { return blockSize_; }
   bool factorized() const { return factorized_; }
+  // Doubles held, N (w + 1): what a copy of the matrix copies (the band in use, never more).
+  std::size_t storedEntries() const { return band_.size(); }
 
   // Scalar entry (row >= col, row - col <= w); only before factorize().
   double& at(int row, int col) { return band_[index(row, col)]; }

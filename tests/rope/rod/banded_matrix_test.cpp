@@ -197,5 +197,22 @@ TEST(SymmetricBandedMatrix, ResetClearsAndReusesStorage) {
     for (int c = 0; c < banded.size(); ++c) EXPECT_EQ(banded.entry(r, c), 0.0);
 }
 
+// A rod that coarsens (16 -> 4 control points on a floor) resets its system smaller; the copies the
+// rod makes of it every substep (its assembly cache) must then copy the small band, not the old one.
+TEST(SymmetricBandedMatrix, ResetToFewerBlocksHoldsAndCopiesOnlyTheNewBand) {
+  SymmetricBandedMatrix banded;
+  banded.reset(16, 3, 3);
+  ASSERT_EQ(banded.storedEntries(), 48u * 12u);
+  banded.reset(4, 3, 3);
+  EXPECT_EQ(banded.storedEntries(), 12u * 12u);
+  banded.addScaledIdentity(3, 3, 2.0);
+  const SymmetricBandedMatrix copy = banded;
+  EXPECT_EQ(copy.storedEntries(), 12u * 12u);
+  EXPECT_EQ(copy.entry(10, 10), 2.0);
+  banded.reset(16, 3, 3);  // and grows back, zeroed
+  EXPECT_EQ(banded.storedEntries(), 48u * 12u);
+  for (int r = 0; r < banded.size(); ++r) EXPECT_EQ(banded.entry(r, r), 0.0);
+}
+
 }  // namespace
 }  // namespace rope

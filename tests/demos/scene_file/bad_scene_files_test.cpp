@@ -7,7 +7,9 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -25,9 +27,27 @@ std::string read(const std::string& file) {
   return text.str();
 }
 
-// ctest runs the cases side by side: each process has its own files.
+// ctest runs the cases side by side: each process has its own files, and removes them when it ends
+// (every case is a process of its own: a CI machine gathered some 60 files per run otherwise).
+class ScratchFiles {
+ public:
+  ~ScratchFiles() {
+    std::error_code ignored;
+    for (const std::string& path : paths_) std::filesystem::remove_all(path, ignored);
+  }
+  std::string path(const std::string& name) {
+    const std::string path = testing::TempDir() + "/scene_file_cli_" + std::to_string(getpid()) + "_" + name;
+    paths_.insert(path);
+    return path;
+  }
+
+ private:
+  std::set<std::string> paths_;
+};
+
 std::string scratch(const std::string& name) {
-  return testing::TempDir() + "/scene_file_cli_" + std::to_string(getpid()) + "_" + name;
+  static ScratchFiles files;
+  return files.path(name);
 }
 
 Outcome ropesim(const std::string& arguments) {

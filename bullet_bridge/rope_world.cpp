@@ -222,6 +222,7 @@ void RopeWorld::substep(double h) {
     if (resting) {
       guardedCall([&] { rope.restSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
     } else {
+      rope.bodyContacts_.swapScratch(contactScratch_);
       guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
     }
     // Self-contact candidates: capsule pairs whose tree leaves (swept boxes) overlap. The tree is the
@@ -241,6 +242,7 @@ void RopeWorld::substep(double h) {
       if (!paired && rope.finishesAlone()) {
         guardedCall([&] { rope.finishSubstep(h); }, [&](const char* message) { rope.failSubstep(message); });
         ropeStages_[r] = RopeStage::kFinished;
+        rope.bodyContacts_.swapScratch(contactScratch_);
       } else if (!paired) {
         ropeStages_[r] = RopeStage::kBegun;
       }

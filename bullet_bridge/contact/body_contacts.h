@@ -78,6 +78,14 @@ class BodyContacts {
   // Cache hints (rope/common/prefetch.h) for the samples and anchors the next substep reads.
   void prefetch() const;
 
+  // The samples' storage, which a caller may lend for one substep: swapScratch before gather() and
+  // again after finish() (the storage each side receives is emptied; what it held is scratch).
+  // RopeWorld lends one set to every rope it finishes within its own visit, so the samples are
+  // written where the rope before wrote its own, still in the caches, and not into each rope's, which
+  // a thousand ropes push out of them (a fifth of a resting rope's memory traffic per step).
+  class Scratch;
+  void swapScratch(Scratch& scratch);
+
  private:
   // What update() does with one active sample after a trial.
   enum class Change { kNone, kRelease, kSlide, kRebound };
@@ -149,5 +157,15 @@ class BodyContacts {
   std::vector<double> correction_;
   GmresSolver gmres_;
 };
+
+class BodyContacts::Scratch {
+  friend class BodyContacts;
+  std::vector<Sample> samples;
+};
+
+inline void BodyContacts::swapScratch(Scratch& scratch) {
+  samples_.swap(scratch.samples);
+  samples_.clear();
+}
 
 }  // namespace rope::bullet

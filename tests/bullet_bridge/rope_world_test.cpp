@@ -527,5 +527,75 @@ TEST(RopeWorldScenario, ForcesAndImpulsesActInTheNextSubstepOnly) {
   EXPECT_LT((rope.rod().momentum() - expected).norm(), 1e-12 * expected.norm());
 }
 
+// RopeWorld lends one contact-sample buffer to each rope for its visit (BodyContacts::swapScratch):
+// a rope finished within its visit gives it back, one that waits keeps it. Ropes that wait: A and B,
+// each lying on a dynamic box it pushes (A without self-contact: it waits only for its end of
+// substep; B with it: for the rope-rope solve too). Rope C, resting on the ground and visited after
+// them, is finished at once and must not write into their samples: the contact forces each rope
+// reports at its end of substep carry its weight, and every rope and box steps exactly as it does
+// with that rope alone in its world.
+TEST(RopeWorldScenario, RopesFinishedInTheirVisitAndRopesThatWaitStepAsIfAlone) {
+  enum Ropes { kA = 1, kB = 2, kC = 4 };
+  struct World {
+    static BulletRopeSettings noSelfContact() {
+      BulletRopeSettings settings;
+      settings.selfContact = false;
+      return settings;
+    }
+    demos::PhysicsWorld physics;
+    RopeObject a{Rod::fromSegment(limpRope(), Vec3(-0.4, 0.41, 0), Vec3(0.4, 0.41, 0)), noSelfContact()};
+    RopeObject b{Rod::fromSegment(limpRope(), Vec3(-0.4, 0.41, 1.0), Vec3(0.4, 0.41, 1.0))};
+    RopeObject c{Rod::fromSegment(limpRope(), Vec3(-0.4, 0.01, 2.0), Vec3(0.4, 0.01, 2.0))};
+    btRigidBody* boxA = nullptr;
+    btRigidBody* boxB = nullptr;
+    explicit World(int ropes) {
+      physics.addGround();
+      boxA = physics.addBox(btVector3(0.5, 0.2, 0.2), 5.0, btVector3(0, 0.2, 0));
+      boxB = physics.addBox(btVector3(0.5, 0.2, 0.2), 5.0, btVector3(0, 0.2, 1.0));
+      for (btRigidBody* box : {boxA, boxB}) box->setActivationState(DISABLE_DEACTIVATION);
+      if (ropes & kA) physics.ropes().addRope(a);
+      if (ropes & kB) physics.ropes().addRope(b);
+      if (ropes & kC) physics.ropes().addRope(c);
+    }
+  };
+  World all(kA | kB | kC), aAlone(kA), bAlone(kB), cAlone(kC);
+  for (int i = 0; i < 120; ++i) {
+    for (World* world : {&all, &aAlone, &bAlone, &cAlone}) stepWorld(world->physics.world(), 1);
+    if (i < 10) continue;  // all three have landed by then
+    ASSERT_GT(all.a.lastStep().contacts, 0) << "step " << i;
+    ASSERT_GT(all.b.lastStep().contacts, 0) << "step " << i;
+    ASSERT_GT(all.c.lastStep().contacts, 0) << "step " << i;
+  }
+  EXPECT_EQ(all.a.rod().controlPoints(), aAlone.a.rod().controlPoints());
+  EXPECT_EQ(all.a.rod().velocities(), aAlone.a.rod().velocities());
+  EXPECT_EQ(all.b.rod().controlPoints(), bAlone.b.rod().controlPoints());
+  EXPECT_EQ(all.b.rod().velocities(), bAlone.b.rod().velocities());
+  EXPECT_EQ(all.c.rod().controlPoints(), cAlone.c.rod().controlPoints());
+  EXPECT_EQ(all.c.rod().velocities(), cAlone.c.rod().velocities());
+  // The contact forces each rope reports (and gives its box) come from its samples at its end of
+  // substep.
+  const auto sameContacts = [](const RopeObject& x, const RopeObject& y) {
+    if (x.contacts().size() != y.contacts().size()) return false;
+    for (std::size_t k = 0; k < x.contacts().size(); ++k) {
+      const RopeContactRecord& p = x.contacts()[k];
+      const RopeContactRecord& q = y.contacts()[k];
+      if (p.s != q.s || p.force != q.force || p.active != q.active || p.sticking != q.sticking) return false;
+    }
+    return true;
+  };
+  // A rope at rest on its support: its contacts carry its weight (a rope that waits lost them if its
+  // samples were not its own at its end of substep).
+  for (const RopeObject* rope : {&all.a, &all.b, &all.c}) {
+    double lift = 0.0;  // N
+    for (const RopeContactRecord& record : rope->contacts()) lift += record.active ? record.force.y() : 0.0;
+    EXPECT_NEAR(lift, rope->rod().mass() * 9.81, 0.02 * rope->rod().mass() * 9.81);
+  }
+  EXPECT_TRUE(sameContacts(all.a, aAlone.a));
+  EXPECT_TRUE(sameContacts(all.b, bAlone.b));
+  EXPECT_TRUE(sameContacts(all.c, cAlone.c));
+  EXPECT_EQ(all.boxA->getWorldTransform().getOrigin(), aAlone.boxA->getWorldTransform().getOrigin());
+  EXPECT_EQ(all.boxB->getWorldTransform().getOrigin(), bAlone.boxB->getWorldTransform().getOrigin());
+}
+
 }  // namespace
 }  // namespace rope::bullet

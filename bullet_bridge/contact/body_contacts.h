@@ -166,6 +166,7 @@ class BodyContacts::Scratch {
 inline void BodyContacts::swapScratch(Scratch& scratch) {
   samples_.swap(scratch.samples);
   samples_.clear();
+  scratch.samples.clear();
 }
 
 }  // namespace rope::bullet

@@ -31,6 +31,10 @@ constexpr double kLeafSlack = 0.1;
 // rope: 7.75 mm of padding instead of 15, so a knot's or a heap's tree-against-tree search reports
 // fewer distant pairs). A little over the half, for the rounding of the exact test's slack.
 constexpr double kRopeReachShare = 0.55;
+// Up to this many capsules a body query (capsulesOverlapping) scans the leaf boxes in order instead
+// of walking the tree: a body's box usually covers much of a short rope, and the scan reads one
+// array where the walk follows pointers to up to twice as many nodes scattered over the heap.
+constexpr int kLinearQueryCapsules = 64;
 
 double diagonal2(const btVector3& lo, const btVector3& hi) {
   const btVector3 d = hi - lo;
@@ -141,11 +145,14 @@ void CapsuleProxies::placeCapsule(int i) {
 }
 
 void CapsuleProxies::rebuild(const Rod& rod) {
-  arcsCurrent_ = false;  // a winch changes rest lengths, perhaps not the curve
+  const bool sameKnots = rod.degree() == rebuiltDegree_ && rod.knots().values() == rebuiltKnots_;
+  // The ends' rest arclengths (endArcs) follow the knots and the rest lengths; a winch changes the
+  // latter without moving a knot, which endArcs sees in the rod's integrals' revision.
+  if (!sameKnots) arcsCurrent_ = false;
   // A rope rebuilds at the end of a substep (updateBoxes) and again at the start of the next, mostly
   // from the same curve: then the capsules stand (and so do the end speeds if the velocities do too).
   // Compared value by value, so any change of the rod in between (a winch, the user) rebuilds.
-  if (rod.degree() == rebuiltDegree_ && rod.knots().values() == rebuiltKnots_ && rod.controlPoints() == rebuiltPoints_) {
+  if (sameKnots && rod.controlPoints() == rebuiltPoints_) {
     if (!(rod.velocities() == rebuiltVelocities_)) {
       speedsCurrent_ = false;
       rebuiltVelocities_ = rod.velocities();
@@ -186,6 +193,7 @@ void CapsuleProxies::resize(int count) {
     shape_->removeChildShapeByIndex(size() - 1);
     capsuleShapes_.pop_back();
     proxies_.pop_back();
+    leafBoxes_.pop_back();
   }
   while (size() < count) {
     CapsuleProxy proxy;
@@ -199,6 +207,7 @@ void CapsuleProxies::resize(int count) {
     capsuleShapes_.back()->getAabb(shape_->getChildTransform(size() - 1), lo, hi);
     btDbvtVolume box = btDbvtVolume::FromMM(lo, hi);
     shape_->getDynamicAabbTree()->update(shape_->getChildList()[size() - 1].m_node, box);
+    leafBoxes_.push_back(box);
   }
   for (int i = 0; i < count; ++i) {
     proxies_[static_cast<std::size_t>(i)].s0 = ends_[static_cast<std::size_t>(i)];
@@ -269,11 +278,12 @@ const std::vector<double>& CapsuleProxies::endSpeeds(const Rod& rod) const {
 }
 
 const std::vector<double>& CapsuleProxies::endArcs(const Rod& rod) const {
-  if (arcsCurrent_) return arcs_;
+  if (arcsCurrent_ && arcsRevision_ == rod.integrals().revision()) return arcs_;
   buildRestArc(rod, restStarts_);
   arcs_.resize(ends_.size());
   for (std::size_t i = 0; i < ends_.size(); ++i) arcs_[i] = restArcAt(rod, restStarts_, ends_[i]);
   arcsCurrent_ = true;
+  arcsRevision_ = rod.integrals().revision();
   return arcs_;
 }
 
@@ -313,12 +323,13 @@ bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {
   if (!std::isfinite(d2) || d2 >= kBulletAabbLimit2) return false;
   const btScalar slack = static_cast<btScalar>(kLeafSlack) * radius_;
   const btVector3 slack3(slack, slack, slack);
-  btDbvtNode* leaf = shape_->getChildList()[i].m_node;
+  btDbvtVolume& leafBox = leafBoxes_[static_cast<std::size_t>(i)];
   const btDbvtVolume box = btDbvtVolume::FromMM(lo, hi);
   const btDbvtVolume loose = btDbvtVolume::FromMM(lo - slack3 * 2, hi + slack3 * 2);
-  if (!leaf->volume.Contain(box) || !loose.Contain(leaf->volume)) {
+  if (!leafBox.Contain(box) || !loose.Contain(leafBox)) {
     btDbvtVolume fat = btDbvtVolume::FromMM(lo - slack3, hi + slack3);
-    shape_->getDynamicAabbTree()->update(leaf, fat);
+    shape_->getDynamicAabbTree()->update(shape_->getChildList()[i].m_node, fat);
+    leafBox = fat;
     treeIndexed_ = false;
   }
   return true;
@@ -351,6 +362,13 @@ void CapsuleProxies::capsulesOverlapping(const btVector3& lo, const btVector3& h
   const btDbvtNode* root = shape_->getDynamicAabbTree()->m_root;
   const btVector3 pad(queryPad_, queryPad_, queryPad_);
   const btDbvtVolume box = btDbvtVolume::FromMM(lo - pad, hi + pad);
+  if (size() <= kLinearQueryCapsules) {
+    // The same capsules as the walk below: a node's box contains its leaves' (btDbvt merges them
+    // exactly), so a leaf that meets the box has no ancestor that misses it. Already in order.
+    for (int i = 0; i < size(); ++i)
+      if (boxesMeet(leafBoxes_[static_cast<std::size_t>(i)], box)) out.push_back(i);
+    return;
+  }
   if (root == nullptr || !boxesMeet(root->volume, box)) return;
   stack.resize(0);
   stack.push_back(root);
@@ -387,6 +405,10 @@ double CapsuleProxies::parameterNear(int i, const btVector3& point) const {
 
 void CapsuleProxies::prefetch() const {
   prefetchVector(proxies_);
+  prefetchVector(leafBoxes_);
+  prefetchVector(rebuiltKnots_);
+  prefetchVector(rebuiltPoints_);
+  prefetchVector(rebuiltVelocities_);
   prefetchVector(axis_);
   prefetchVector(ends_);
   prefetchVector(speeds_);

@@ -33,6 +33,7 @@
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <BulletCollision/CollisionDispatch/btCollisionWorld.h>
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -121,8 +122,8 @@ class CapsuleProxies {
   // (updateBoxes), the body contacts' reach and the rope-rope contacts' (contact/).
   const std::vector<double>& endSpeeds(const Rod& rod) const;
   // The rest arclength (m from the rod's start, as the contact rules measure it) at each capsule end,
-  // size() + 1 increasing values, for `rod`: the rod the proxies were last rebuilt from, its knots and
-  // rest lengths unchanged since. Computed once per rebuild, as endSpeeds.
+  // size() + 1 increasing values, for `rod`: the rod the proxies were last rebuilt from. Computed
+  // again only when its knots or its rest lengths (its integrals' revision) have changed.
   const std::vector<double>& endArcs(const Rod& rod) const;
   // The curve parameter of the point of capsule i's axis nearest to `point` (world frame).
   double parameterNear(int i, const btVector3& point) const;
@@ -139,6 +140,9 @@ class CapsuleProxies {
   const btDbvt& tree() const { return *shape_->getDynamicAabbTree(); }
   static int firstCapsule(const btDbvtNode& node) { return static_cast<int>(node.volume.Mins().w()); }
   static int lastCapsule(const btDbvtNode& node) { return static_cast<int>(node.volume.Maxs().w()); }
+  // The tree's leaf boxes (x, y, z as the leaves hold them) in capsule order, in one array: a walk
+  // over all of a short rope's leaves reads these rather than the nodes (see leafBoxes_).
+  const std::vector<btDbvtVolume>& leafBoxes() const { return leafBoxes_; }
   // Midphase: the capsules whose leaves meet the box [lo, hi] (world frame) grown by the part of the
   // speculative margin the leaves do not carry, in increasing order, into `out` (cleared first);
   // `stack` is the traversal's scratch.
@@ -179,7 +183,8 @@ class CapsuleProxies {
   mutable bool speedsCurrent_ = false;  // speeds_ belong to the last rebuild
   mutable PointList velocities_;        // scratch of endSpeeds
   mutable std::vector<double> arcs_;    // endArcs: rest arclength at each capsule end, m
-  mutable bool arcsCurrent_ = false;    // arcs_ belong to the last rebuild
+  mutable bool arcsCurrent_ = false;    // arcs_ belong to the knots of the last rebuild ...
+  mutable std::uint64_t arcsRevision_ = 0;  // ... and to the rod's integrals of this revision
   mutable std::vector<double> restStarts_;  // scratch of endArcs: rest arclength at each span start
   bool treeIndexed_ = false;              // the tree's capsule ranges are current (indexTree)
   std::vector<btDbvtNode*> treeOrder_;    // scratch of indexTree: the nodes, parents first
@@ -190,6 +195,10 @@ class CapsuleProxies {
   std::unique_ptr<btCollisionObject> object_;
   btCollisionWorld* world_ = nullptr;
   bool boxUnannounced_ = false;  // updateBoxesDeferred set a box the broadphase has not seen yet
+  // Each capsule's tree leaf box as the tree holds it (x, y, z), in capsule order: fitLeaf and
+  // capsulesOverlapping read these instead of the tree's nodes, which Bullet allocates one by one
+  // all over the heap (with a thousand ropes, a cache miss per node every substep).
+  std::vector<btDbvtVolume> leafBoxes_;
   // m: added to the object's broadphase box and to every capsulesOverlapping query, the part of the
   // speculative margin the leaves do not carry (capsule_proxies.cpp, kRopeReachShare); 0 for proxies
   // whose leaves the caller fits (kinematic ropes).

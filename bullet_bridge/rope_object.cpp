@@ -427,12 +427,17 @@ void RopeObject::prefetchObject() const { prefetchBytes(this, sizeof(*this)); }
 void RopeObject::prefetchParts() const { prefetchBytes(proxies_.get(), sizeof(CapsuleProxies)); }
 
 void RopeObject::prefetchState() const {
-  rod_.prefetch();
+  rod_.prefetchState();
   proxies_->prefetch();
   bodyContacts_.prefetch();
   prefetchVector(contacts_);
   prefetchVector(attachments_);
   prefetchVector(attachmentLoads_);
+}
+
+void RopeObject::prefetchTrial() const {
+  prefetchState();
+  rod_.prefetch();
 }
 
 void RopeObject::prefetchRecords() const {

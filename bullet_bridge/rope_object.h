@@ -210,13 +210,30 @@ class RopeObject {
   // and no contact sample gives a dynamic body an impulse. Such a rope's substep can be finished
   // before the other ropes' begin without changing what they see.
   bool finishesAlone() const;
+  // What a substep works in and nothing carries to the next (the contact samples, the rod's system,
+  // force lists, trial and queued springs' buffer): RopeWorld lends one set to each rope it steps
+  // (swapStepScratch before beginSubstep, and again after finishSubstep if that came within the
+  // rope's visit), so that a thousand ropes write their substeps into one set, still in the caches.
+  // Results are bit for bit those of the rope's own storage. Not with a trial pending (Rod).
+  struct StepScratch {
+    BodyContacts::Scratch contacts;
+    Rod::StepScratch rod;
+  };
+  void swapStepScratch(StepScratch& scratch) {
+    rod_.swapStepScratch(scratch.rod);  // first: it throws, with nothing changed, if a trial is pending
+    bodyContacts_.swapScratch(scratch.contacts);
+  }
   // Cache hints (rope/common/prefetch.h) the RopeWorld gives three, two and one ropes ahead of the
   // rope it steps: this object's own bytes; then (once they have arrived) its capsule proxies'
   // object; then the heap blocks both point to. Each stage reads only pointers the previous one
   // brought in, so none of them waits for memory.
   void prefetchObject() const;
   void prefetchParts() const;
+  // prefetchState: what lasts from one substep to the next (a rope about to be lent the step's
+  // storage, swapStepScratch); prefetchTrial: that and the storage the rope holds now (one that has
+  // begun its substep and still has to finish it).
   void prefetchState() const;
+  void prefetchTrial() const;
   // The same for what RopeWorld's last pass over the ropes reads once the rope's substep is done:
   // its records and its collision object (the box for Bullet's broadphase).
   void prefetchRecords() const;

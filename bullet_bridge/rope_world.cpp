@@ -23,6 +23,14 @@
 
 namespace rope::bullet {
 
+namespace {
+
+// Up to this many capsules a rope's self-contact candidates are found by testing every pair of its
+// leaf boxes (at most 105 pairs of 16) rather than by walking its tree (RopeWorld::collideTrees).
+constexpr int kLinearSelfScanCapsules = 16;
+
+}  // namespace
+
 // Bullet calls updateAction once per internal substep with dt = the fixed step, after collision
 // detection, the solver and integration of that substep (btDiscreteDynamicsWorld::
 // internalSingleStepSimulation -> updateActions).
@@ -222,7 +230,8 @@ void RopeWorld::substep(double h) {
     if (resting) {
       guardedCall([&] { rope.restSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
     } else {
-      rope.bodyContacts_.swapScratch(contactScratch_);
+      // A trial left pending by a failure keeps the rope's own storage (RopeObject::swapStepScratch).
+      if (!rope.rod().hasTrial()) rope.swapStepScratch(stepScratch_);
       guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
     }
     // Self-contact candidates: capsule pairs whose tree leaves (swept boxes) overlap. The tree is the
@@ -242,7 +251,7 @@ void RopeWorld::substep(double h) {
       if (!paired && rope.finishesAlone()) {
         guardedCall([&] { rope.finishSubstep(h); }, [&](const char* message) { rope.failSubstep(message); });
         ropeStages_[r] = RopeStage::kFinished;
-        rope.bodyContacts_.swapScratch(contactScratch_);
+        if (!rope.rod().hasTrial()) rope.swapStepScratch(stepScratch_);
       } else if (!paired) {
         ropeStages_[r] = RopeStage::kBegun;
       }
@@ -263,7 +272,7 @@ void RopeWorld::substep(double h) {
       if (ropeStages_[r + 1] == RopeStage::kFinished) {
         ropes_[r + 1]->prefetchRecords();
       } else {
-        ropes_[r + 1]->prefetchState();
+        ropes_[r + 1]->prefetchTrial();
       }
     }
     if (!rope->resting() && ropeStages_[r] != RopeStage::kFinished) {
@@ -374,14 +383,31 @@ void RopeWorld::collideTrees(const RopeObject& a, const RopeObject& b) {
   const std::vector<double>& arcs = proxies.endArcs(first.rod());
   const int lastCapsule = proxies.size() - 1;
   const double exclusion = first.settings().effectiveSelfContactExclusion(first.rod().settings().radius);
-  const auto mayPair = [&](const btDbvtNode* x, const btDbvtNode* y) {
-    const int x0 = CapsuleProxies::firstCapsule(*x), y0 = CapsuleProxies::firstCapsule(*y);
-    const int x1 = std::min(CapsuleProxies::lastCapsule(*x), lastCapsule);
-    const int y1 = std::min(CapsuleProxies::lastCapsule(*y), lastCapsule);
+  const auto mayPairRanges = [&](int x0, int x1, int y0, int y1) {
+    x1 = std::min(x1, lastCapsule);
+    y1 = std::min(y1, lastCapsule);
     if (x0 > x1 || y0 > y1) return false;
     const double farthest = std::max(arcs[static_cast<std::size_t>(y1) + 1] - arcs[static_cast<std::size_t>(x0)],
                                      arcs[static_cast<std::size_t>(x1) + 1] - arcs[static_cast<std::size_t>(y0)]);
     return !(farthest < exclusion);
+  };
+  const int capsules = proxies.size();
+  if (capsules <= kLinearSelfScanCapsules) {
+    // A short rope: every pair of its leaf boxes in one array, not the walk over the tree's nodes,
+    // which Bullet allocates one by one (a thousand ropes: a cache miss per node every substep). The
+    // same pairs as the walk's (overlappingBoxPairs; sortCapsulePairs orders them): mayPair of two
+    // capsule ranges holds whenever it holds for two capsules within them.
+    overlappingBoxPairs(
+        proxies.leafBoxes(),
+        [&](int capsule0, int capsule1) {
+          if (capsule1 - capsule0 > 1) capsulePairs_.push_back(RopeCapsulePair{rope0, capsule0, rope1, capsule1});
+        },
+        [&](int capsule0, int capsule1) { return mayPairRanges(capsule0, capsule0, capsule1, capsule1); });
+    return;
+  }
+  const auto mayPair = [&](const btDbvtNode* x, const btDbvtNode* y) {
+    return mayPairRanges(CapsuleProxies::firstCapsule(*x), CapsuleProxies::lastCapsule(*x),
+                         CapsuleProxies::firstCapsule(*y), CapsuleProxies::lastCapsule(*y));
   };
   overlappingLeafPairs(
       root0, root1, treeStack_,

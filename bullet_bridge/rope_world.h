@@ -142,9 +142,9 @@ class RopeWorld {
   // rope-rope solve), begun and waiting for its end, finished already, or resting.
   enum class RopeStage : unsigned char { kPaired, kBegun, kFinished, kRested };
   std::vector<RopeStage> ropeStages_;
-  // The contact samples' storage lent to each rope for its visit (BodyContacts::swapScratch): a rope
-  // finished in its visit gives it back; one that waits keeps it, and the world keeps the rope's own.
-  BodyContacts::Scratch contactScratch_;
+  // The step's storage lent to each rope for its visit (RopeObject::swapStepScratch): a rope finished
+  // in its visit gives it back; one that waits keeps it, and the world keeps the rope's own.
+  RopeObject::StepScratch stepScratch_;
   std::vector<RopeObject*> pairRopes_;  // the ropes the capsule pairs name, in world order
   std::vector<int> pairRopeIndex_;      // per rope: its index in pairRopes_, -1 if none
   struct PairRopeContacts {

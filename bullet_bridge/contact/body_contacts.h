@@ -35,6 +35,7 @@
 #include <functional>
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "bullet_bridge/bullet_precision.h"
@@ -78,8 +79,9 @@ class BodyContacts {
   // Cache hints (rope/common/prefetch.h) for the samples and anchors the next substep reads.
   void prefetch() const;
 
-  // The samples' storage, which a caller may lend for one substep: swapScratch before gather() and
-  // again after finish() (the storage each side receives is emptied; what it held is scratch).
+  // The samples' storage and gather()'s working lists, which a caller may lend for one substep:
+  // swapScratch before gather() and again after finish() (the samples each side receives are
+  // emptied; what it held is scratch).
   // RopeWorld lends one set to every rope it finishes within its own visit, so the samples are
   // written where the rope before wrote its own, still in the caches, and not into each rope's, which
   // a thousand ropes push out of them (a fifth of a resting rope's memory traffic per step).
@@ -161,12 +163,21 @@ class BodyContacts {
 class BodyContacts::Scratch {
   friend class BodyContacts;
   std::vector<Sample> samples;
+  LineContactSampler sampler;
+  std::vector<ContactSample> sampled;
+  std::vector<Contact> chordContacts;
+  std::vector<int> nearCapsules;
 };
 
 inline void BodyContacts::swapScratch(Scratch& scratch) {
   samples_.swap(scratch.samples);
   samples_.clear();
   scratch.samples.clear();
+  // gather() fills these afresh for every body and capsule.
+  std::swap(sampler_, scratch.sampler);
+  scratch_.swap(scratch.sampled);
+  chordContacts_.swap(scratch.chordContacts);
+  nearCapsules_.swap(scratch.nearCapsules);
 }
 
 }  // namespace rope::bullet

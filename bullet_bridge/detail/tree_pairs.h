@@ -82,6 +82,20 @@ void overlappingLeafPairs(const btDbvtNode* root0, const btDbvtNode* root1, std:
   }
 }
 
+// What overlappingLeafPairs(root, root, stack, visit, mayPair) reports for a tree whose leaf i
+// (dataAsInt i) holds boxes[i], found by testing every pair of the array: visit(i, j) for each
+// i < j whose boxes meet and that mayPair(i, j) keeps. The same pairs (in another order) when mayPair
+// of two subtrees holds whenever it holds for two leaves below them, as a filter by capsule ranges
+// does: the walk asks it of nodes, this of leaves. For a small tree, whose nodes Bullet allocates one
+// by one, so that the walk fetches each from wherever it lies.
+template <class Visit, class MayPair>
+void overlappingBoxPairs(const std::vector<btDbvtVolume>& boxes, Visit&& visit, MayPair&& mayPair) {
+  const int count = static_cast<int>(boxes.size());
+  for (int i = 0; i < count; ++i)
+    for (int j = i + 1; j < count; ++j)
+      if (boxesMeet(boxes[static_cast<std::size_t>(i)], boxes[static_cast<std::size_t>(j)]) && mayPair(i, j)) visit(i, j);
+}
+
 // Every pair whose boxes meet.
 template <class Visit>
 void overlappingLeafPairs(const btDbvtNode* root0, const btDbvtNode* root1, std::vector<DbvtNodePair>& stack,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
 
 #include "rope/common/error.h"
 #include "rope/common/prefetch.h"
@@ -454,12 +455,15 @@ void Rod::queueSpring(double s, const Vec3& force, const Eigen::Matrix3d& stiffn
 }
 
 void Rod::takeLoads(LoadQueue& queue) {
-  queue.loads.clear();
-  queue.springs.clear();
-  queue.marked.clear();
-  queue.loads.swap(loads_);
-  queue.springs.swap(springs_);
-  queue.marked.swap(markedInteractions_);
+  // Copied, not exchanged: each side keeps its own buffers, so storage lent to the rod
+  // (swapStepScratch) stays the rod's for the step, and a queue that is empty (the usual case
+  // between steps) touches no memory.
+  queue.loads.assign(loads_.begin(), loads_.end());
+  queue.springs.assign(springs_.begin(), springs_.end());
+  queue.marked.assign(markedInteractions_.begin(), markedInteractions_.end());
+  loads_.clear();
+  springs_.clear();
+  markedInteractions_.clear();
   trialValid_ = false;
 }
 
@@ -1092,18 +1096,35 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
   return true;
 }
 
+void Rod::swapStepScratch(StepScratch& scratch) {
+  if (trialValid_) {
+    throw InvalidArgument("trial", "pending", "swapStepScratch needs a rod with no trial (before solveTrial or after commitTrial)");
+  }
+  // The queued springs move into the lent buffer (usually there are none between steps).
+  scratch.springs.assign(springs_.begin(), springs_.end());
+  springs_.swap(scratch.springs);
+  scratch.springs.clear();
+  std::swap(system_, scratch.system);
+  rhs_.swap(scratch.rhs);
+  force_.swap(scratch.force);
+  stiffnessTimesV_.swap(scratch.stiffnessTimesV);
+  materialTimesV_.swap(scratch.materialTimesV);
+  massTimesV_.swap(scratch.massTimesV);
+  internalForce_.swap(scratch.internalForce);
+  historyTerm_.swap(scratch.historyTerm);
+  stiffnessBlocks_.swap(scratch.stiffnessBlocks);
+  materialBlocks_.swap(scratch.materialBlocks);
+  newPoints_.swap(scratch.newPoints);
+  newVelocities_.swap(scratch.newVelocities);
+  relinearisationPoints_.swap(scratch.relinearisationPoints);
+  // Another rod's assembly never matches this rod's inputs: the integrals' revision in its key is
+  // process-wide (rod_integrals.h), shared only by a copy, whose assembly is then this rod's own.
+  std::swap(assemblyCache_, scratch.assemblyCache);
+}
+
 void Rod::prefetch() const {
-  prefetchVector(knots_.values());
-  prefetchVector(points_);
-  prefetchVector(velocities_);
-  prefetchVector(rest_);
-  integrals_.prefetch();
-  prefetchVector(pins_);
-  prefetchVector(loads_);
-  prefetchVector(springs_);
+  prefetchState();
   system_.prefetch();
-  prefetchVector(rows_);
-  prefetchVector(shapeLimits_);
   prefetchVector(rhs_);
   prefetchVector(force_);
   prefetchVector(stiffnessTimesV_);
@@ -1113,12 +1134,24 @@ void Rod::prefetch() const {
   prefetchVector(historyTerm_);
   prefetchVector(stiffnessBlocks_);
   prefetchVector(materialBlocks_);
-  prefetchVector(internalImpulse_);
-  prefetchVector(previousInternalImpulse_);
   prefetchVector(newPoints_);
   prefetchVector(newVelocities_);
   prefetchVector(relinearisationPoints_);
-  prefetchVector(stretchScratch_);
+}
+
+void Rod::prefetchState() const {
+  prefetchVector(knots_.values());
+  prefetchVector(points_);
+  prefetchVector(velocities_);
+  prefetchVector(rest_);
+  integrals_.prefetch();
+  prefetchVector(pins_);
+  prefetchVector(loads_);
+  prefetchVector(springs_);
+  prefetchVector(rows_);
+  prefetchVector(shapeLimits_);
+  prefetchVector(internalImpulse_);
+  prefetchVector(previousInternalImpulse_);
   prefetchVector(bend_);
   prefetchVector(spans_);
 }

@@ -124,7 +124,9 @@ class Rod {
   int controlPointCount() const { return static_cast<int>(points_.size()); }
   const KnotVector& knots() const { return knots_; }
   // Cache hints (rope/common/prefetch.h) for the state and scratch a step reads; changes nothing.
+  // prefetchState: the state alone, for a rod that will be lent its step scratch (swapStepScratch).
   void prefetch() const;
+  void prefetchState() const;
   const PointList& controlPoints() const { return points_; }
   const PointList& velocities() const { return velocities_; }     // control-point velocities, m/s
   const PointList& restControlPoints() const { return rest_; }
@@ -355,8 +357,8 @@ class Rod {
 
  public:
   // The queued loads as a value, for a bridge that solves one step several times with loads of its
-  // own: takeLoads() moves the rod's queue into `queue` (whose old contents are dropped; the buffers
-  // are exchanged, so a steady state allocates nothing), addLoads() queues them again (they were
+  // own: takeLoads() moves the rod's queue into `queue` (whose old contents are dropped; each keeps
+  // its buffers, so a steady state allocates nothing), addLoads() queues them again (they were
   // validated when they were first queued).
   class LoadQueue {
    public:
@@ -370,6 +372,16 @@ class Rod {
   };
   void takeLoads(LoadQueue& queue);
   void addLoads(const LoadQueue& queue);
+
+  // The storage a step works in (the system and its factor's band, the force lists, the trial, the
+  // queued springs' buffer), which holds nothing from one step to the next: a caller stepping many
+  // rods may lend one set to each rod in turn, so that a step writes where the rod before wrote, still
+  // in the caches, and not into every rod's own, which a thousand rods push out of them.
+  // swapStepScratch exchanges the rod's set with `scratch`; call it with no trial pending (before
+  // solveTrial, after commitTrial; else InvalidArgument "trial", nothing changed). Queued springs
+  // stay queued on the rod, and the results are bit for bit those of the rod's own storage.
+  class StepScratch;
+  void swapStepScratch(StepScratch& scratch);
 
  private:
   Rod(const RodSettings& settings, KnotVector knots, PointList points, PointList velocities,
@@ -476,6 +488,8 @@ class Rod {
       valid = false;
       return *this;
     }
+    AssemblyCache(AssemblyCache&&) = default;
+    AssemblyCache& operator=(AssemblyCache&&) = default;
     bool valid = false;
     std::uint64_t integralsRevision = 0;
     double step = 0.0, internalWeight = 0.0, axial = 0.0;
@@ -489,7 +503,7 @@ class Rod {
     void store(const Rod& rod, double h, double c);
   };
   AssemblyCache assemblyCache_;
-  PointList relinearisationPoints_, stretchScratch_;
+  PointList relinearisationPoints_;
   std::vector<double> bend_;
   std::vector<int> spans_;
   std::vector<double> interactions_;
@@ -512,6 +526,17 @@ class Rod {
   bool trialRelinearisationTried_ = false;  // the last solveTrial solved again about its first trial
   bool relinearisingInContact_ = false;     // the last solveTrial's relineariseInContact
   double trialStep_ = 0.0;
+};
+
+class Rod::StepScratch {
+  friend class Rod;
+  SymmetricBandedMatrix system;
+  std::vector<double> rhs;
+  PointList force, stiffnessTimesV, materialTimesV, massTimesV, internalForce, historyTerm;
+  std::vector<Eigen::Matrix3d> stiffnessBlocks, materialBlocks;
+  PointList newPoints, newVelocities, relinearisationPoints;
+  AssemblyCache assemblyCache;
+  std::vector<Spring> springs;
 };
 
 }  // namespace rope

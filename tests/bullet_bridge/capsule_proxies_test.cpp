@@ -227,62 +227,87 @@ TEST(CapsuleProxies, ARebuildFollowsEveryChangeOfTheRodAndOnlyThen) {
   rod.insertKnot(0.41);  // the same curve, more capsules
   proxies.rebuild(rod);
   expectAsFresh("a knot inserted");
+  // A winch: the end span's rest length changes, and endArcs must follow it.
+  const std::vector<double> arcs = proxies.endArcs(rod);
+  rod.payOut(Rod::End::kEnd, 0.05);
+  proxies.rebuild(rod);
+  expectAsFresh("an end paid out");
+  EXPECT_NE(proxies.endArcs(rod).back(), arcs.back());
+  rod.payOut(Rod::End::kEnd, -0.05);  // reeled in again: a negative length
+  proxies.rebuild(rod);
+  expectAsFresh("an end reeled in");
 }
 
 // The midphase query reports exactly the capsules whose leaves meet the box (a caller-fitted chain:
-// no margin is added), in increasing order, for boxes that meet none, some and all of a folded chain.
+// no margin is added), in increasing order, for boxes that meet none, some and all of a folded chain:
+// of 120 capsules (the query walks the tree) and of 40 (it scans the leaf boxes' array, which must
+// hold each leaf's box as the tree does, also after capsules come and go).
 TEST(CapsuleProxies, CapsulesOverlappingAreTheCapsulesWhoseLeavesMeetTheBox) {
-  CapsuleProxies proxies(nullptr, kKinematicRopeTag, 0.005);
-  std::mt19937_64 random(20261205);
-  std::uniform_real_distribution<double> step(-0.01, 0.01);
-  std::vector<double> ends;
-  std::vector<btVector3> axis;
-  btVector3 point(0, 0, 0);
-  for (int i = 0; i <= 120; ++i) {
-    ends.push_back(0.01 * i);
-    axis.push_back(point);
-    point += btVector3(static_cast<btScalar>(step(random)), static_cast<btScalar>(step(random)),
-                       static_cast<btScalar>(step(random)));
-  }
-  proxies.rebuild(ends, axis);
-  const btVector3 pad(btScalar(0.005), btScalar(0.005), btScalar(0.005));
-  std::vector<std::pair<btVector3, btVector3>> leaves;
-  for (int i = 0; i < proxies.size(); ++i) {
-    btVector3 lo = axis[static_cast<std::size_t>(i)], hi = lo;
-    lo.setMin(axis[static_cast<std::size_t>(i) + 1]);
-    hi.setMax(axis[static_cast<std::size_t>(i) + 1]);
-    ASSERT_TRUE(proxies.fitLeaf(i, lo - pad, hi + pad));
-  }
-  struct Leaves : btDbvt::ICollide {
-    void Process(const btDbvtNode* leaf) override { out->push_back(leaf); }
-    std::vector<const btDbvtNode*>* out = nullptr;
-  } collect;
-  std::vector<const btDbvtNode*> leafNodes;
-  collect.out = &leafNodes;
-  btDbvt::enumLeaves(proxies.tree().m_root, collect);
-  ASSERT_EQ(leafNodes.size(), static_cast<std::size_t>(proxies.size()));
-  std::uniform_real_distribution<double> centre(-0.06, 0.06), size(0.0, 0.04);
-  std::vector<int> found;
-  btNodeStack stack;
-  std::size_t reported = 0, empty = 0;
-  for (int query = 0; query < 200; ++query) {
-    const btVector3 c(static_cast<btScalar>(centre(random)), static_cast<btScalar>(centre(random)),
-                      static_cast<btScalar>(centre(random)));
-    const btScalar half = static_cast<btScalar>(query == 0 ? 10.0 : size(random));
-    const btVector3 lo = c - btVector3(half, half, half), hi = c + btVector3(half, half, half);
-    proxies.capsulesOverlapping(lo, hi, found, stack);
-    std::vector<int> expected;
-    for (const btDbvtNode* leaf : leafNodes) {
-      if (TestAabbAgainstAabb2(leaf->volume.Mins(), leaf->volume.Maxs(), lo, hi)) expected.push_back(leaf->dataAsInt);
+  for (const int count : {120, 40}) {
+    SCOPED_TRACE(testing::Message() << count << " capsules");
+    CapsuleProxies proxies(nullptr, kKinematicRopeTag, 0.005);
+    std::mt19937_64 random(20261205);
+    std::uniform_real_distribution<double> step(-0.01, 0.01);
+    std::vector<double> ends;
+    std::vector<btVector3> axis;
+    btVector3 point(0, 0, 0);
+    for (int i = 0; i <= count; ++i) {
+      ends.push_back(0.01 * i);
+      axis.push_back(point);
+      point += btVector3(static_cast<btScalar>(step(random)), static_cast<btScalar>(step(random)),
+                         static_cast<btScalar>(step(random)));
     }
-    std::sort(expected.begin(), expected.end());
-    EXPECT_EQ(found, expected) << "query " << query;
-    reported += found.size();
-    empty += found.empty() ? 1 : 0;
+    // Built longer, cut back and grown again: leaves leave and join at the end.
+    proxies.rebuild(ends, axis);
+    proxies.rebuild(std::vector<double>(ends.begin(), ends.begin() + count / 2 + 1),
+                    std::vector<btVector3>(axis.begin(), axis.begin() + count / 2 + 1));
+    proxies.rebuild(ends, axis);
+    const btVector3 pad(btScalar(0.005), btScalar(0.005), btScalar(0.005));
+    for (int i = 0; i < proxies.size(); ++i) {
+      btVector3 lo = axis[static_cast<std::size_t>(i)], hi = lo;
+      lo.setMin(axis[static_cast<std::size_t>(i) + 1]);
+      hi.setMax(axis[static_cast<std::size_t>(i) + 1]);
+      ASSERT_TRUE(proxies.fitLeaf(i, lo - pad, hi + pad));
+    }
+    struct Leaves : btDbvt::ICollide {
+      void Process(const btDbvtNode* leaf) override { out->push_back(leaf); }
+      std::vector<const btDbvtNode*>* out = nullptr;
+    } collect;
+    std::vector<const btDbvtNode*> leafNodes;
+    collect.out = &leafNodes;
+    btDbvt::enumLeaves(proxies.tree().m_root, collect);
+    ASSERT_EQ(leafNodes.size(), static_cast<std::size_t>(proxies.size()));
+    ASSERT_EQ(proxies.leafBoxes().size(), leafNodes.size());
+    for (const btDbvtNode* leaf : leafNodes) {
+      const btDbvtVolume& box = proxies.leafBoxes()[static_cast<std::size_t>(leaf->dataAsInt)];
+      for (int axisIndex = 0; axisIndex < 3; ++axisIndex) {
+        EXPECT_EQ(box.Mins()[axisIndex], leaf->volume.Mins()[axisIndex]) << "leaf " << leaf->dataAsInt;
+        EXPECT_EQ(box.Maxs()[axisIndex], leaf->volume.Maxs()[axisIndex]) << "leaf " << leaf->dataAsInt;
+      }
+    }
+    std::uniform_real_distribution<double> centre(-0.06, 0.06), size(0.0, 0.04);
+    std::vector<int> found;
+    btNodeStack stack;
+    std::size_t reported = 0, empty = 0;
+    for (int query = 0; query < 200; ++query) {
+      const btVector3 c(static_cast<btScalar>(centre(random)), static_cast<btScalar>(centre(random)),
+                        static_cast<btScalar>(centre(random)));
+      const btScalar half = static_cast<btScalar>(query == 0 ? 10.0 : size(random));
+      const btVector3 lo = c - btVector3(half, half, half), hi = c + btVector3(half, half, half);
+      proxies.capsulesOverlapping(lo, hi, found, stack);
+      std::vector<int> expected;
+      for (const btDbvtNode* leaf : leafNodes) {
+        if (TestAabbAgainstAabb2(leaf->volume.Mins(), leaf->volume.Maxs(), lo, hi)) expected.push_back(leaf->dataAsInt);
+      }
+      std::sort(expected.begin(), expected.end());
+      EXPECT_EQ(found, expected) << "query " << query;
+      reported += found.size();
+      empty += found.empty() ? 1 : 0;
+    }
+    // Not vacuous: some queries meet nothing, the first meets everything, most meet some.
+    EXPECT_GT(empty, 0u);
+    EXPECT_GT(reported, static_cast<std::size_t>(proxies.size()) + 200);
   }
-  // Not vacuous: some queries meet nothing, the first meets everything, most meet some.
-  EXPECT_GT(empty, 0u);
-  EXPECT_GT(reported, static_cast<std::size_t>(proxies.size()) + 200);
 }
 
 TEST(CapsuleProxies, HugeBoxesAreReportedNotHandedToBullet) {

@@ -455,6 +455,57 @@ TEST(Rod, ATrialSolvedAgainEqualsAFreshOneAfterEveryKindOfChange) {
   }
 }
 
+// A rod stepped in lent storage (swapStepScratch, as the bridge's RopeWorld lends one set to every
+// rope) steps bit for bit as in its own, after another rod's step has filled the set. The other rod
+// here has the same shape, state and step, and differs only in its density: the assembly it left in
+// the set matches this rod's inputs in all but the integrals' revision, which must keep this rod from
+// taking the other's mass blocks. A spring queued before the swap stays queued, and a pending trial
+// refuses the swap.
+TEST(Rod, StepsInLentStorageAreBitwiseThoseInItsOwn) {
+  RodSettings settings = softSettings();
+  settings.massDamping = 0.5;
+  settings.stiffnessDamping = 0.002;
+  settings.materialDamping = 0.001;
+  const std::vector<Vec3> polyline = {Vec3(0, 0, 0), Vec3(0.3, -0.2, 0), Vec3(0.6, -0.1, 0.1), Vec3(1.0, 0, 0)};
+  const auto make = [&](double density) {
+    RodSettings s = settings;
+    s.linearDensity = density;
+    Rod rod = Rod::fromPolyline(s, polyline);
+    rod.pin(rod.beginParameter());
+    return rod;
+  };
+  Rod other = make(0.3);
+  Rod lent = make(0.1);
+  Rod own = make(0.1);
+  Rod::StepScratch scratch;
+  const double h = 1.0 / 240;
+  const Eigen::Matrix3d stiffness = 300.0 * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d damping = 0.5 * Eigen::Matrix3d::Identity();
+  for (int i = 0; i < 40; ++i) {
+    other.swapStepScratch(scratch);
+    other.addSpring(0.6, Vec3(0, -1, 0), 2.0 * stiffness, damping);
+    ASSERT_TRUE(other.step(h).ok);
+    other.swapStepScratch(scratch);
+    for (Rod* r : {&lent, &own}) r->addSpring(0.81, Vec3(0.1, std::sin(0.2 * i), 0), stiffness, damping);
+    lent.swapStepScratch(scratch);
+    const StepReport lentReport = lent.step(h);
+    const StepReport ownReport = own.step(h);
+    lent.swapStepScratch(scratch);
+    ASSERT_TRUE(lentReport.ok && ownReport.ok) << "step " << i;
+    ASSERT_TRUE(sameState(RodSnapshot(lent), RodSnapshot(own))) << "step " << i;
+    ASSERT_EQ(lent.totalEnergy(), own.totalEnergy()) << "step " << i;
+  }
+  ASSERT_TRUE(lent.solveTrial(h).ok);
+  try {
+    lent.swapStepScratch(scratch);
+    ADD_FAILURE() << "a pending trial was swapped away";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.parameter(), "trial");
+  }
+  ASSERT_TRUE(own.solveTrial(h).ok);
+  EXPECT_EQ(lent.trialVelocities(), own.trialVelocities());
+}
+
 // A spring sample enters the step exactly like a spring (same trial, bitwise) but is no interaction
 // point: the spring gets a knot at its parameter, the sample does not.
 TEST(Rod, SpringSampleActsLikeASpringWithoutAskingForAKnot) {

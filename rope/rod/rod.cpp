@@ -539,10 +539,10 @@ StepReport Rod::solveTrial(double h, bool relineariseInContact) {
     // One Newton correction: the same step with the stretching force linearised about the trial
     // (see linearisationExcess). It is kept if it relieves the stretch the first pass made; if not
     // (a Newton step from far off, or a failed solve), the first pass is solved again and kept.
-    relinearisationPoints_ = newPoints_;
+    step_.relinearisationPoints = step_.newPoints;
     const double first = trialEnergy();
     StepReport corrected;
-    const bool ok = assembleAndSolve(h, corrected, &relinearisationPoints_);
+    const bool ok = assembleAndSolve(h, corrected, &step_.relinearisationPoints);
     if (!(ok && trialEnergy() < first)) solved = assembleAndSolve(h, report);
   }
   if (solved) {
@@ -555,7 +555,7 @@ StepReport Rod::solveTrial(double h, bool relineariseInContact) {
 
 const PointList& Rod::trialVelocities() const {
   if (!trialValid_) throw InvalidArgument("trial", "none", "solveTrial() must have succeeded since the last change");
-  return newVelocities_;
+  return step_.newVelocities;
 }
 
 Vec3 Rod::trialVelocity(double s) const {
@@ -583,7 +583,7 @@ void Rod::trialImpulseResponse(double s, const Vec3& direction, double* response
   for (int a = 0; a <= d; ++a)
     for (int c = 0; c < 3; ++c) response[3 * (first + a) + c] = basis.d[0][static_cast<size_t>(a)] * direction[c];
   // The scratch solver is logically const here: it only reuses the trial's Schur factor.
-  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous(system_, response, 3 * first);
+  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous(step_.system, response, 3 * first);
 }
 
 void Rod::trialImpulseResponses(double s, double* responses) const { impulseResponses(s, responses, false); }
@@ -607,7 +607,7 @@ void Rod::impulseResponses(double s, double* responses, bool onward) const {
       for (int c = 0; c < 3; ++c) response[3 * (first + a) + c] = basis.d[0][static_cast<size_t>(a)] * direction[c];
   }
   // The scratch solver is logically const here: it only reuses the trial's Schur factor.
-  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous3(system_, responses, 3 * first, onward ? 3 * first : 0);
+  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous3(step_.system, responses, 3 * first, onward ? 3 * first : 0);
 }
 
 void Rod::trialGeneralizedResponse(double* impulses) const {
@@ -622,7 +622,7 @@ void Rod::trialGeneralizedResponse(double* impulses) const {
   }
   if (firstRow == n3) return;  // no impulse, no response
   // The scratch solver is logically const here: it only reuses the trial's Schur factor.
-  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous(system_, impulses, firstRow);
+  const_cast<ConstrainedSolver&>(solver_).solveHomogeneous(step_.system, impulses, firstRow);
 }
 
 void Rod::correctTrial(const double* dv) {
@@ -631,8 +631,8 @@ void Rod::correctTrial(const double* dv) {
   for (int i = 0; i < n; ++i) {
     const size_t u = static_cast<size_t>(i);
     const Vec3 change(dv[3 * u], dv[3 * u + 1], dv[3 * u + 2]);
-    newVelocities_[u] += change;
-    newPoints_[u] += trialStep_ * change;
+    step_.newVelocities[u] += change;
+    step_.newPoints[u] += trialStep_ * change;
   }
 }
 
@@ -651,7 +651,7 @@ void Rod::limitShapeChange(double s, double maxChange) {
 StepReport Rod::commitTrial() {
   if (!trialValid_) throw InvalidArgument("trial", "none", "solveTrial() must have succeeded since the last change");
   StepReport report;
-  if (!allFinite(newPoints_) || !allFinite(newVelocities_)) {
+  if (!allFinite(step_.newPoints) || !allFinite(step_.newVelocities)) {
     // A correction (correctTrial) made the trial non-finite: keep the state, as for a failed solve.
     report.ok = false;
     report.failure = "the step produced a non-finite state";
@@ -673,8 +673,8 @@ StepReport Rod::commitTrial() {
   // Free in this step: nothing but pins, clamps and point masses acted on it (they are added below).
   freeLastStep_ = interactions_.empty() && !contactLastStep_;
   recordInternalImpulse();  // before the swap: it needs the start-of-step forces and the new velocities
-  points_.swap(newPoints_);
-  velocities_.swap(newVelocities_);
+  points_.swap(step_.newPoints);
+  velocities_.swap(step_.newVelocities);
   for (const Pin& p : pins_) interactions_.push_back(p.parameter);
   for (const auto& pointMass : pointMasses_) interactions_.push_back(pointMass.first);
   addClampNeighbours(interactions_);
@@ -705,11 +705,11 @@ void Rod::recordInternalImpulse() {
   const double eta = settings_.materialDamping;
   previousInternalImpulse_.swap(internalImpulse_);
   internalImpulse_.resize(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) internalImpulse_[static_cast<size_t>(i)] = (c * h) * internalForce_[static_cast<size_t>(i)];
+  for (int i = 0; i < n; ++i) internalImpulse_[static_cast<size_t>(i)] = (c * h) * step_.internalForce[static_cast<size_t>(i)];
   for (int j = 0; j < integrals_.spanCount(); ++j) {
-    const Eigen::Matrix3d* k = &stiffnessBlocks_[static_cast<size_t>(j) * blocksPerSpan];
-    const Eigen::Matrix3d* km = eta > 0.0 ? &materialBlocks_[static_cast<size_t>(j) * blocksPerSpan] : nullptr;
-    const Vec3* v = &newVelocities_[static_cast<size_t>(j)];
+    const Eigen::Matrix3d* k = &step_.stiffnessBlocks[static_cast<size_t>(j) * blocksPerSpan];
+    const Eigen::Matrix3d* km = eta > 0.0 ? &step_.materialBlocks[static_cast<size_t>(j) * blocksPerSpan] : nullptr;
+    const Vec3* v = &step_.newVelocities[static_cast<size_t>(j)];
     Vec3* g = &internalImpulse_[static_cast<size_t>(j)];
     for (int a = 0; a < local; ++a) {
       for (int b = 0; b <= a; ++b, ++k) {
@@ -723,7 +723,7 @@ void Rod::recordInternalImpulse() {
       }
     }
   }
-  for (int i = 0; i < n; ++i) internalImpulse_[static_cast<size_t>(i)] += historyTerm_[static_cast<size_t>(i)];
+  for (int i = 0; i < n; ++i) internalImpulse_[static_cast<size_t>(i)] += step_.historyTerm[static_cast<size_t>(i)];
   historySteps_ = c < 1.0 ? 2 : 1;
   historyStep_ = h;
 }
@@ -745,10 +745,10 @@ double Rod::linearisationExcess() const {
   for (int j = 0; j < integrals_.spanCount(); ++j) {
     const SpanView span = integrals_.span(j);
     const Vec3* q = &points_[static_cast<size_t>(j)];
-    const Vec3* x = &newPoints_[static_cast<size_t>(j)];
+    const Vec3* x = &step_.newPoints[static_cast<size_t>(j)];
     for (int a = 0; a < local; ++a) scratch[a] = Vec3::Zero();
     energy += stretchingSpan(span, x, axial, StiffnessMode::kClamped, scratch, nullptr);
-    const Eigen::Matrix3d* k = &stiffnessBlocks_[static_cast<size_t>(j) * blocksPerSpan];
+    const Eigen::Matrix3d* k = &step_.stiffnessBlocks[static_cast<size_t>(j) * blocksPerSpan];
     for (int a = 0; a < local; ++a) {
       const Vec3 da = x[a] - q[a];
       // Bending's force on this span, -B (q - q_0) (as assembled), taken out of the internal force.
@@ -764,19 +764,19 @@ double Rod::linearisationExcess() const {
   }
   for (int i = 0; i < controlPointCount(); ++i) {
     const size_t u = static_cast<size_t>(i);
-    work += internalForce_[u].dot(newPoints_[u] - points_[u]);
+    work += step_.internalForce[u].dot(step_.newPoints[u] - points_[u]);
   }
   const double model = stretchingEnergy_ - work + 0.5 * curvature;
   return energy - model;
 }
 
 double Rod::trialEnergy() const {
-  double sum = rope::stretchingEnergy(integrals_, newPoints_, settings_.axialStiffness()) +
-               rope::bendingEnergy(integrals_, newPoints_);
+  double sum = rope::stretchingEnergy(integrals_, step_.newPoints, settings_.axialStiffness()) +
+               rope::bendingEnergy(integrals_, step_.newPoints);
   for (int j = 0; j < integrals_.spanCount(); ++j) {
     const SpanView span = integrals_.span(j);
-    const Vec3* x = &newPoints_[static_cast<size_t>(j)];
-    const Vec3* v = &newVelocities_[static_cast<size_t>(j)];
+    const Vec3* x = &step_.newPoints[static_cast<size_t>(j)];
+    const Vec3* v = &step_.newVelocities[static_cast<size_t>(j)];
     for (int a = 0; a < span.localCount; ++a) {
       sum -= span.gravity[a] * settings_.gravity.dot(x[a]);
       for (int b = 0; b < span.localCount; ++b) sum += 0.5 * span.mass[a * span.localCount + b] * v[a].dot(v[b]);
@@ -804,14 +804,14 @@ bool Rod::linearisationExcessive() const {
   // round-off). A rope of ordinary stiffness stays far below (the default 1 m rope released
   // horizontally: at most 1.2e-4 of m g L per step): its step is unchanged. A stiff thin rope (E = 1e13 Pa,
   // r = 0.5 mm) starting to swing at 1/60 s made 2.6e-4 J, 3 % of m g L, in its first step.
-  if (stiffnessBlocks_.empty()) return false;
+  if (step_.stiffnessBlocks.empty()) return false;
   const double excess = linearisationExcess();
   if (!(excess > 1e-12 * settings_.axialStiffness() * restLength())) return false;
   double kinetic = 0.0;
   for (int j = 0; j < integrals_.spanCount(); ++j) {
     const SpanView span = integrals_.span(j);
     const int local = span.localCount;
-    const Vec3* v = &newVelocities_[static_cast<size_t>(j)];
+    const Vec3* v = &step_.newVelocities[static_cast<size_t>(j)];
     for (int a = 0; a < local; ++a)
       for (int b = 0; b < local; ++b) kinetic += 0.5 * span.mass[a * local + b] * v[a].dot(v[b]);
   }
@@ -835,15 +835,15 @@ void Rod::assembleState(double h, const PointList* about) {
   const Vec3 gravity = settings_.gravity;
   const size_t blocksPerSpan = static_cast<size_t>(local * (local + 1) / 2);
 
-  system_.reset(n, 3, d);
+  step_.system.reset(n, 3, d);
   stretchingEnergy_ = 0.0;
-  force_.assign(static_cast<size_t>(n), Vec3::Zero());
-  internalForce_.assign(static_cast<size_t>(n), Vec3::Zero());
-  stiffnessTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
-  if (eta > 0.0) materialTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
-  massTimesV_.assign(static_cast<size_t>(n), Vec3::Zero());
-  stiffnessBlocks_.resize(static_cast<size_t>(integrals_.spanCount()) * blocksPerSpan);
-  if (eta > 0.0) materialBlocks_.resize(stiffnessBlocks_.size());
+  step_.force.assign(static_cast<size_t>(n), Vec3::Zero());
+  step_.internalForce.assign(static_cast<size_t>(n), Vec3::Zero());
+  step_.stiffnessTimesV.assign(static_cast<size_t>(n), Vec3::Zero());
+  if (eta > 0.0) step_.materialTimesV.assign(static_cast<size_t>(n), Vec3::Zero());
+  step_.massTimesV.assign(static_cast<size_t>(n), Vec3::Zero());
+  step_.stiffnessBlocks.resize(static_cast<size_t>(integrals_.spanCount()) * blocksPerSpan);
+  if (eta > 0.0) step_.materialBlocks.resize(step_.stiffnessBlocks.size());
 
   Eigen::Matrix3d blocks[(kMaxDegree + 1) * (kMaxDegree + 1)];
   Eigen::Matrix3d material[(kMaxDegree + 1) * (kMaxDegree + 1)];
@@ -851,13 +851,13 @@ void Rod::assembleState(double h, const PointList* about) {
     const SpanView span = integrals_.span(j);
     const Vec3* q = &points_[static_cast<size_t>(j)];
     const Vec3* v = &velocities_[static_cast<size_t>(j)];
-    Vec3* f = &force_[static_cast<size_t>(j)];
-    Vec3* kv = &stiffnessTimesV_[static_cast<size_t>(j)];
-    Vec3* mv = &massTimesV_[static_cast<size_t>(j)];
-    Vec3* mkv = eta > 0.0 ? &materialTimesV_[static_cast<size_t>(j)] : nullptr;
-    Eigen::Matrix3d* stored = &stiffnessBlocks_[static_cast<size_t>(j) * blocksPerSpan];
+    Vec3* f = &step_.force[static_cast<size_t>(j)];
+    Vec3* kv = &step_.stiffnessTimesV[static_cast<size_t>(j)];
+    Vec3* mv = &step_.massTimesV[static_cast<size_t>(j)];
+    Vec3* mkv = eta > 0.0 ? &step_.materialTimesV[static_cast<size_t>(j)] : nullptr;
+    Eigen::Matrix3d* stored = &step_.stiffnessBlocks[static_cast<size_t>(j) * blocksPerSpan];
     Eigen::Matrix3d* storedMaterial =
-        eta > 0.0 ? &materialBlocks_[static_cast<size_t>(j) * blocksPerSpan] : nullptr;
+        eta > 0.0 ? &step_.materialBlocks[static_cast<size_t>(j) * blocksPerSpan] : nullptr;
     if (about == nullptr) {
       stretchingEnergy_ += stretchingSpan(span, q, axial, StiffnessMode::kClamped, f, blocks);
     } else {
@@ -896,7 +896,7 @@ void Rod::assembleState(double h, const PointList* about) {
       Vec3 fa = weight;
       for (int b = 0; b < local; ++b) fa -= span.bending[a * local + b] * (q[b] - q[0]);  // see bending_energy.cpp
       f[a] += fa;
-      internalForce_[static_cast<size_t>(j + a)] -= weight;  // force_ minus gravity, completed below
+      step_.internalForce[static_cast<size_t>(j + a)] -= weight;  // step_.force minus gravity, completed below
     }
     for (int a = 0; a < local; ++a) {
       for (int b = 0; b <= a; ++b) {
@@ -921,13 +921,13 @@ void Rod::assembleState(double h, const PointList* about) {
           entry += dampScale * km;
         }
         entry.diagonal().array() += massScale * m;
-        system_.addBlock(j + a, j + b, entry);
+        step_.system.addBlock(j + a, j + b, entry);
       }
     }
   }
 
-  // The internal (stretching and bending) forces: force_ so far less gravity.
-  for (int i = 0; i < n; ++i) internalForce_[static_cast<size_t>(i)] += force_[static_cast<size_t>(i)];
+  // The internal (stretching and bending) forces: step_.force so far less gravity.
+  for (int i = 0; i < n; ++i) step_.internalForce[static_cast<size_t>(i)] += step_.force[static_cast<size_t>(i)];
 
   BasisValues basis;
   // Point masses (method eq. 11a): m b_a b_b in the mass matrix, m g b_a in the gravity load.
@@ -937,10 +937,10 @@ void Rod::assembleState(double h, const PointList* about) {
     for (int a = 0; a < local; ++a) u += basis.d[0][static_cast<size_t>(a)] * velocities_[static_cast<size_t>(first + a)];
     for (int a = 0; a < local; ++a) {
       const double ba = basis.d[0][static_cast<size_t>(a)];
-      force_[static_cast<size_t>(first + a)] += (m * ba) * gravity;
-      massTimesV_[static_cast<size_t>(first + a)] += (m * ba) * u;
+      step_.force[static_cast<size_t>(first + a)] += (m * ba) * gravity;
+      step_.massTimesV[static_cast<size_t>(first + a)] += (m * ba) * u;
       for (int b = 0; b <= a; ++b) {
-        system_.addBlock(first + a, first + b,
+        step_.system.addBlock(first + a, first + b,
                          (massScale * m * ba * basis.d[0][static_cast<size_t>(b)]) * Eigen::Matrix3d::Identity());
       }
     }
@@ -972,8 +972,8 @@ void Rod::AssemblyCache::store(const Rod& rod, double h, double c) {
   pointMasses = rod.pointMasses_;
   points = rod.points_;
   velocities = rod.velocities_;
-  system = rod.system_;
-  force = rod.force_;
+  system = rod.step_.system;
+  force = rod.step_.force;
   valid = true;
 }
 
@@ -989,13 +989,13 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
   // The rod's own part of the step (everything but loads and springs) depends only on its state: the
   // body-contact passes of a substep (solveTrial again with new contact springs) take it from the
   // last pass linearised about the start instead of assembling it again, bit for bit the same.
-  if (about == nullptr && assemblyCache_.matches(*this, h, c)) {
-    system_ = assemblyCache_.system;
-    force_ = assemblyCache_.force;
+  if (about == nullptr && step_.assemblyCache.matches(*this, h, c)) {
+    step_.system = step_.assemblyCache.system;
+    step_.force = step_.assemblyCache.force;
   } else {
-    assemblyCache_.valid = false;  // the members below are overwritten
+    step_.assemblyCache.valid = false;  // the members below are overwritten
     assembleState(h, about);
-    if (about == nullptr) assemblyCache_.store(*this, h, c);
+    if (about == nullptr) step_.assemblyCache.store(*this, h, c);
   }
 
   BasisValues basis;
@@ -1004,7 +1004,7 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
     const int k = knots_.findSpan(load.parameter);
     evaluateBasis(knots_, k, load.parameter, 0, basis);
     const Vec3 force = load.impulse ? Vec3(load.force / h) : load.force;
-    for (int a = 0; a < local; ++a) force_[static_cast<size_t>(k - d + a)] += basis.d[0][static_cast<size_t>(a)] * force;
+    for (int a = 0; a < local; ++a) step_.force[static_cast<size_t>(k - d + a)] += basis.d[0][static_cast<size_t>(a)] * force;
   }
   for (const Spring& spring : springs_) {
     const int k = knots_.findSpan(spring.parameter);
@@ -1018,33 +1018,33 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
     const Eigen::Matrix3d matrix = h * h * spring.stiffness + h * spring.damping;
     for (int a = 0; a < local; ++a) {
       const double ba = b[static_cast<size_t>(a)];
-      force_[static_cast<size_t>(first + a)] += ba * force;
-      for (int c = 0; c <= a; ++c) system_.addBlock(first + a, first + c, (ba * b[static_cast<size_t>(c)]) * matrix);
+      step_.force[static_cast<size_t>(first + a)] += ba * force;
+      for (int c = 0; c <= a; ++c) step_.system.addBlock(first + a, first + c, (ba * b[static_cast<size_t>(c)]) * matrix);
     }
   }
 
   // BDF2's history term H = (6 g_n - g_{n-1}) / 9 (method eq. 22c), zero on a restart step.
-  historyTerm_.assign(static_cast<size_t>(n), Vec3::Zero());
+  step_.historyTerm.assign(static_cast<size_t>(n), Vec3::Zero());
   if (c < 1.0) {
     for (int i = 0; i < n; ++i) {
       const size_t u = static_cast<size_t>(i);
-      historyTerm_[u] = (6.0 * internalImpulse_[u] - (historySteps_ > 1 ? previousInternalImpulse_[u] : Vec3::Zero())) / 9.0;
+      step_.historyTerm[u] = (6.0 * internalImpulse_[u] - (historySteps_ > 1 ? previousInternalImpulse_[u] : Vec3::Zero())) / 9.0;
     }
   }
   trialInternalWeight_ = c;
-  rhs_.resize(static_cast<size_t>(3 * n));
+  step_.rhs.resize(static_cast<size_t>(3 * n));
   for (int i = 0; i < n; ++i) {
     const size_t u = static_cast<size_t>(i);
     // Backward Euler (and BDF2's restart step) in the one expression of eq. 22, so that its rounding
     // does not depend on the integrator chosen; BDF2 reweights the internal part (eq. 22a).
-    Vec3 damped = (beta + h) * stiffnessTimesV_[u];
-    if (eta > 0.0) damped += eta * materialTimesV_[u];
-    const Vec3 r = c == 1.0 ? Vec3(h * (force_[u] - alpha * massTimesV_[u] - damped))
-                            : Vec3(h * (force_[u] - internalForce_[u] - alpha * massTimesV_[u]) +
-                                   (c * h) * (internalForce_[u] - damped) + historyTerm_[u]);
-    for (int axis = 0; axis < 3; ++axis) rhs_[static_cast<size_t>(3 * i + axis)] = r[axis];
+    Vec3 damped = (beta + h) * step_.stiffnessTimesV[u];
+    if (eta > 0.0) damped += eta * step_.materialTimesV[u];
+    const Vec3 r = c == 1.0 ? Vec3(h * (step_.force[u] - alpha * step_.massTimesV[u] - damped))
+                            : Vec3(h * (step_.force[u] - step_.internalForce[u] - alpha * step_.massTimesV[u]) +
+                                   (c * h) * (step_.internalForce[u] - damped) + step_.historyTerm[u]);
+    for (int axis = 0; axis < 3; ++axis) step_.rhs[static_cast<size_t>(3 * i + axis)] = r[axis];
   }
-  if (!system_.factorize()) {
+  if (!step_.system.factorize()) {
     report.ok = false;
     report.failure = "factorisation failed: the step matrix is not positive definite or not finite";
     return false;
@@ -1058,26 +1058,26 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
       rows_.push_back(clampTangentRows(knots_, points_, velocities_, pinned.parameter, pinned.direction, h));
     }
   }
-  if (!solver_.solve(system_, rows_, rhs_.data())) {
+  if (!solver_.solve(step_.system, rows_, step_.rhs.data())) {
     report.ok = false;
     report.failure = "pin or clamp constraints are dependent or not finite";
     return false;
   }
 
-  newPoints_.resize(static_cast<size_t>(n));
-  newVelocities_.resize(static_cast<size_t>(n));
+  step_.newPoints.resize(static_cast<size_t>(n));
+  step_.newVelocities.resize(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) {
     const size_t u = static_cast<size_t>(i);
-    const Vec3 dv(rhs_[3 * u], rhs_[3 * u + 1], rhs_[3 * u + 2]);
-    newVelocities_[u] = velocities_[u] + dv;
-    newPoints_[u] = points_[u] + h * newVelocities_[u];
+    const Vec3 dv(step_.rhs[3 * u], step_.rhs[3 * u + 1], step_.rhs[3 * u + 2]);
+    step_.newVelocities[u] = velocities_[u] + dv;
+    step_.newPoints[u] = points_[u] + h * step_.newVelocities[u];
   }
-  if (!allFinite(newPoints_) || !allFinite(newVelocities_)) {
+  if (!allFinite(step_.newPoints) || !allFinite(step_.newVelocities)) {
     report.ok = false;
     report.failure = "the step produced a non-finite state";
     return false;
   }
-  if (overstretchedBy(newPoints_)) {
+  if (overstretchedBy(step_.newPoints)) {
     report.ok = false;
     report.failure = "the step stretched the rope past Rod::kMaxStepStretch times its rest length";
     return false;
@@ -1086,7 +1086,7 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
   // on itself at s within the step): a failed step, not a silently reversed weld.
   for (const Pin& pinned : pins_) {
     if (!pinned.isClamp()) continue;
-    const Vec3 tangent = evaluateCurve(knots_, newPoints_, pinned.parameter).firstDerivative;
+    const Vec3 tangent = evaluateCurve(knots_, step_.newPoints, pinned.parameter).firstDerivative;
     if (!(tangent.dot(pinned.direction) > 0.0)) {
       report.ok = false;
       report.failure = "a clamp's tangent reversed within the step";
@@ -1104,39 +1104,26 @@ void Rod::swapStepScratch(StepScratch& scratch) {
   scratch.springs.assign(springs_.begin(), springs_.end());
   springs_.swap(scratch.springs);
   scratch.springs.clear();
-  std::swap(system_, scratch.system);
-  rhs_.swap(scratch.rhs);
-  force_.swap(scratch.force);
-  stiffnessTimesV_.swap(scratch.stiffnessTimesV);
-  materialTimesV_.swap(scratch.materialTimesV);
-  massTimesV_.swap(scratch.massTimesV);
-  internalForce_.swap(scratch.internalForce);
-  historyTerm_.swap(scratch.historyTerm);
-  stiffnessBlocks_.swap(scratch.stiffnessBlocks);
-  materialBlocks_.swap(scratch.materialBlocks);
-  newPoints_.swap(scratch.newPoints);
-  newVelocities_.swap(scratch.newVelocities);
-  relinearisationPoints_.swap(scratch.relinearisationPoints);
   // Another rod's assembly never matches this rod's inputs: the integrals' revision in its key is
   // process-wide (rod_integrals.h), shared only by a copy, whose assembly is then this rod's own.
-  std::swap(assemblyCache_, scratch.assemblyCache);
+  std::swap(step_, scratch.buffers);
 }
 
 void Rod::prefetch() const {
   prefetchState();
-  system_.prefetch();
-  prefetchVector(rhs_);
-  prefetchVector(force_);
-  prefetchVector(stiffnessTimesV_);
-  prefetchVector(materialTimesV_);
-  prefetchVector(massTimesV_);
-  prefetchVector(internalForce_);
-  prefetchVector(historyTerm_);
-  prefetchVector(stiffnessBlocks_);
-  prefetchVector(materialBlocks_);
-  prefetchVector(newPoints_);
-  prefetchVector(newVelocities_);
-  prefetchVector(relinearisationPoints_);
+  step_.system.prefetch();
+  prefetchVector(step_.rhs);
+  prefetchVector(step_.force);
+  prefetchVector(step_.stiffnessTimesV);
+  prefetchVector(step_.materialTimesV);
+  prefetchVector(step_.massTimesV);
+  prefetchVector(step_.internalForce);
+  prefetchVector(step_.historyTerm);
+  prefetchVector(step_.stiffnessBlocks);
+  prefetchVector(step_.materialBlocks);
+  prefetchVector(step_.newPoints);
+  prefetchVector(step_.newVelocities);
+  prefetchVector(step_.relinearisationPoints);
 }
 
 void Rod::prefetchState() const {

@@ -404,9 +404,10 @@ class Rod {
   // One linearised step. `about` (end-of-step control points of an earlier pass, or null for the
   // start of the step) is where the stretching force is linearised (rod.cpp: relinearise).
   bool assembleAndSolve(double h, StepReport& report, const PointList* about = nullptr);
-  // assembleAndSolve's part that depends on the rod's state alone: system_ and force_ from the spans
-  // (stretching linearised about `about` or the start, bending, mass, damping, gravity) and the point
-  // masses, with the products and blocks the step's bookkeeping reads (internalForce_ and the rest).
+  // assembleAndSolve's part that depends on the rod's state alone: step_.system and step_.force from
+  // the spans (stretching linearised about `about` or the start, bending, mass, damping, gravity) and
+  // the point masses, with the products and blocks the step's bookkeeping reads (step_.internalForce
+  // and the rest).
   void assembleState(double h, const PointList* about);
   // trialImpulseResponses (onward: trialImpulseResponsesOnward).
   void impulseResponses(double s, double* responses, bool onward) const;
@@ -457,28 +458,17 @@ class Rod {
   std::vector<Spring> springs_;
 
   // Step scratch (kept to avoid allocation per step).
-  SymmetricBandedMatrix system_;
   ConstrainedSolver solver_;
   std::vector<ConstraintRows> rows_;
   std::vector<ConstraintRows> relaxationRows_;  // insertKnotUnchecked's scratch
-  std::vector<double> rhs_;
-  PointList force_, stiffnessTimesV_, materialTimesV_, massTimesV_;
-  // The internal forces (stretching, bending; N per control point) at the start of the trial, their
-  // stiffness blocks and, with materialDamping, material stiffness blocks K_m (lower triangle per
-  // span), and the trial's history term (N s): what recordInternalImpulse() needs once the trial's
-  // end velocities are final.
-  PointList internalForce_, historyTerm_;
-  std::vector<Eigen::Matrix3d> stiffnessBlocks_;
-  std::vector<Eigen::Matrix3d> materialBlocks_;
   double trialInternalWeight_ = 1.0;
   // BDF2's history (method eq. 22c): the internal impulses g (N s per control point) of the last two
   // steps, how many of them are valid (0 after a restart) and the h they were taken with (s).
   PointList internalImpulse_, previousInternalImpulse_;
   int historySteps_ = 0;
   double historyStep_ = 0.0;
-  PointList newPoints_, newVelocities_;
   double stretchingEnergy_ = 0.0;  // J, at the last pass's linearisation point
-  // assembleState's system_ and force_ from its last run about the start of the step, and every input
+  // assembleState's system and force from its last run about the start of the step, and every input
   // they were computed from (compared bit for bit): a pass with the same state reuses them.
   struct AssemblyCache {
     // Scratch like the solver: a copy of the rod starts without it (and assembles afresh).
@@ -502,8 +492,23 @@ class Rod {
     bool matches(const Rod& rod, double h, double c) const;
     void store(const Rod& rod, double h, double c);
   };
-  AssemblyCache assemblyCache_;
-  PointList relinearisationPoints_;
+  // What a step works in and nothing carries to the next step (swapStepScratch lends it).
+  struct StepBuffers {
+    SymmetricBandedMatrix system;
+    std::vector<double> rhs;
+    PointList force, stiffnessTimesV, materialTimesV, massTimesV;
+    // The internal forces (stretching, bending; N per control point) at the start of the trial,
+    // their stiffness blocks and, with materialDamping, material stiffness blocks K_m (lower
+    // triangle per span), and the trial's history term (N s): what recordInternalImpulse() needs
+    // once the trial's end velocities are final.
+    PointList internalForce, historyTerm;
+    std::vector<Eigen::Matrix3d> stiffnessBlocks;
+    std::vector<Eigen::Matrix3d> materialBlocks;
+    PointList newPoints, newVelocities;  // the trial
+    PointList relinearisationPoints;
+    AssemblyCache assemblyCache;
+  };
+  StepBuffers step_;
   std::vector<double> bend_;
   std::vector<int> spans_;
   std::vector<double> interactions_;
@@ -530,12 +535,7 @@ class Rod {
 
 class Rod::StepScratch {
   friend class Rod;
-  SymmetricBandedMatrix system;
-  std::vector<double> rhs;
-  PointList force, stiffnessTimesV, materialTimesV, massTimesV, internalForce, historyTerm;
-  std::vector<Eigen::Matrix3d> stiffnessBlocks, materialBlocks;
-  PointList newPoints, newVelocities, relinearisationPoints;
-  AssemblyCache assemblyCache;
+  StepBuffers buffers;
   std::vector<Spring> springs;
 };
 

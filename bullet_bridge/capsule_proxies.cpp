@@ -359,7 +359,6 @@ void CapsuleProxies::capsulesOverlapping(const btVector3& lo, const btVector3& h
   // The walk of btDbvt::collideTVNoStackAlloc (the same leaves), with the branch-free box test and
   // without a virtual call per leaf: every body near a rope asks this every substep.
   out.clear();
-  const btDbvtNode* root = shape_->getDynamicAabbTree()->m_root;
   const btVector3 pad(queryPad_, queryPad_, queryPad_);
   const btDbvtVolume box = btDbvtVolume::FromMM(lo - pad, hi + pad);
   if (size() <= kLinearQueryCapsules) {
@@ -369,6 +368,7 @@ void CapsuleProxies::capsulesOverlapping(const btVector3& lo, const btVector3& h
       if (boxesMeet(leafBoxes_[static_cast<std::size_t>(i)], box)) out.push_back(i);
     return;
   }
+  const btDbvtNode* root = shape_->getDynamicAabbTree()->m_root;
   if (root == nullptr || !boxesMeet(root->volume, box)) return;
   stack.resize(0);
   stack.push_back(root);

@@ -428,16 +428,20 @@ void RopeObject::prefetchParts() const { prefetchBytes(proxies_.get(), sizeof(Ca
 
 void RopeObject::prefetchState() const {
   rod_.prefetchState();
+  prefetchContactState();
+}
+
+void RopeObject::prefetchTrial() const {
+  rod_.prefetch();  // the rod's state and the step storage it holds now
+  prefetchContactState();
+}
+
+void RopeObject::prefetchContactState() const {
   proxies_->prefetch();
   bodyContacts_.prefetch();
   prefetchVector(contacts_);
   prefetchVector(attachments_);
   prefetchVector(attachmentLoads_);
-}
-
-void RopeObject::prefetchTrial() const {
-  prefetchState();
-  rod_.prefetch();
 }
 
 void RopeObject::prefetchRecords() const {

@@ -234,6 +234,7 @@ class RopeObject {
   // begun its substep and still has to finish it).
   void prefetchState() const;
   void prefetchTrial() const;
+  void prefetchContactState() const;  // both's part beyond the rod: capsules, contacts, attachments
   // The same for what RopeWorld's last pass over the ropes reads once the rope's substep is done:
   // its records and its collision object (the box for Bullet's broadphase).
   void prefetchRecords() const;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <tuple>
 
@@ -710,7 +711,18 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   };
   const auto nearAccepted = [&](const Hit& hit) {
     const Accepted from{hit.ropeA, hit.ropeB, hit.arcA - hit.spacing, hit.arcB};
-    for (auto it = std::lower_bound(keptByArc_.begin(), keptByArc_.end(), from, byArc); it != keptByArc_.end(); ++it) {
+    // std::lower_bound(keptByArc_, from, byArc), each halving chosen by a select instead of a branch:
+    // every hit asks, and the mispredicted branches of std::lower_bound were 5 % of the 2 m pile's
+    // step (perf: 2,700 hits per substep). [first, first + length] holds the answer throughout.
+    const Accepted* first = keptByArc_.data();
+    const Accepted* const end = first + keptByArc_.size();
+    for (std::ptrdiff_t length = end - first; length > 1;) {
+      const std::ptrdiff_t half = length / 2;
+      first = byArc(first[half - 1], from) ? first + half : first;
+      length -= half;
+    }
+    if (first != end && byArc(*first, from)) ++first;
+    for (const Accepted* it = first; it != end; ++it) {
       const Accepted& other = *it;
       if (other.ropeA != hit.ropeA || other.ropeB != hit.ropeB || !(other.arcA < hit.arcA + hit.spacing)) break;
       if (std::abs(other.arcA - hit.arcA) < hit.spacing && std::abs(other.arcB - hit.arcB) < hit.spacing) return true;

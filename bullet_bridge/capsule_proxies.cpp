@@ -165,7 +165,6 @@ void CapsuleProxies::rebuild(const Rod& rod) {
   axis_.resize(ends_.size());
   for (std::size_t i = 0; i < ends_.size(); ++i) axis_[i] = toBullet(points_[i]);
   resize(static_cast<int>(ends_.size()) - 1);
-  indexTree();
   rebuiltDegree_ = rod.degree();
   rebuiltKnots_ = rod.knots().values();
   rebuiltPoints_ = rod.controlPoints();
@@ -183,11 +182,9 @@ void CapsuleProxies::rebuild(const std::vector<double>& ends, const std::vector<
   arcsCurrent_ = false;
   rebuiltDegree_ = -1;  // the capsules no longer come from a rod
   resize(static_cast<int>(ends_.size()) - 1);
-  indexTree();
 }
 
 void CapsuleProxies::resize(int count) {
-  if (count != size()) treeIndexed_ = false;
   // Children leave and join at the end only, so child index = capsule index stays true.
   while (size() > count) {
     shape_->removeChildShapeByIndex(size() - 1);
@@ -263,7 +260,6 @@ int CapsuleProxies::fitBoxes(const Rod& rod, double predictionTime, double margi
     hi += btVector3(pad, pad, pad);
     if (!fitLeaf(i, lo, hi)) ++overflows;
   }
-  indexTree();
   if (shape_->getDynamicAabbTree()->m_root == nullptr) return overflows;
   return setObjectBox() ? overflows : size();
 }
@@ -287,35 +283,6 @@ const std::vector<double>& CapsuleProxies::endArcs(const Rod& rod) const {
   return arcs_;
 }
 
-void CapsuleProxies::indexTree() {
-  if (treeIndexed_) return;
-  treeIndexed_ = true;
-  btDbvtNode* root = shape_->getDynamicAabbTree()->m_root;
-  if (root == nullptr) return;
-  // Breadth first (parents before children), then backwards: children before parents.
-  treeOrder_.clear();
-  treeOrder_.push_back(root);
-  for (std::size_t k = 0; k < treeOrder_.size(); ++k) {
-    btDbvtNode* node = treeOrder_[k];
-    if (node->isinternal()) {
-      treeOrder_.push_back(node->childs[0]);
-      treeOrder_.push_back(node->childs[1]);
-    }
-  }
-  for (std::size_t k = treeOrder_.size(); k-- > 0;) {
-    btDbvtNode* node = treeOrder_[k];
-    btScalar first, last;
-    if (node->isleaf()) {
-      first = last = static_cast<btScalar>(node->dataAsInt);
-    } else {
-      first = std::min(node->childs[0]->volume.Mins().w(), node->childs[1]->volume.Mins().w());
-      last = std::max(node->childs[0]->volume.Maxs().w(), node->childs[1]->volume.Maxs().w());
-    }
-    node->volume.tMins().setW(first);
-    node->volume.tMaxs().setW(last);
-  }
-}
-
 bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {
   requireCapsule(i);
   const double d2 = diagonal2(lo, hi);
@@ -330,13 +297,11 @@ bool CapsuleProxies::fitLeaf(int i, const btVector3& lo, const btVector3& hi) {
     btDbvtVolume fat = btDbvtVolume::FromMM(lo - slack3, hi + slack3);
     shape_->getDynamicAabbTree()->update(shape_->getChildList()[i].m_node, fat);
     leafBox = fat;
-    treeIndexed_ = false;
   }
   return true;
 }
 
 bool CapsuleProxies::fitObjectBox() {
-  indexTree();  // after the caller's fitLeaf calls
   if (!setObjectBox()) return false;
   announceObjectBox();
   return true;

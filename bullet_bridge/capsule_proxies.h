@@ -131,17 +131,11 @@ class CapsuleProxies {
   const btCollisionObject& object() const { return *object_; }
   btCollisionObject& object() { return *object_; }
   const RopeShape& shape() const { return *shape_; }
-  // The midphase tree (leaves: swept capsule boxes; leaf->dataAsInt = capsule index). Every node also
-  // names the capsules below it: firstCapsule(node) <= i <= lastCapsule(node) for each of its leaves'
-  // capsule indices i (so a self-contact walk can skip a subtree whose capsules are all within the
-  // exclusion of each other: rope_world.cpp, collideTrees). The ranges are brought up to date by
-  // rebuild, updateBoxes, updateBoxesDeferred and fitObjectBox (a caller that fits the leaves itself
-  // calls fitObjectBox after them), so reading the tree never writes to it.
+  // The midphase tree (leaves: swept capsule boxes; leaf->dataAsInt = capsule index): Bullet's queries
+  // and the rope-body and rope-rope midphase walk it.
   const btDbvt& tree() const { return *shape_->getDynamicAabbTree(); }
-  static int firstCapsule(const btDbvtNode& node) { return static_cast<int>(node.volume.Mins().w()); }
-  static int lastCapsule(const btDbvtNode& node) { return static_cast<int>(node.volume.Maxs().w()); }
-  // The tree's leaf boxes (x, y, z as the leaves hold them) in capsule order, in one array: a walk
-  // over all of a short rope's leaves reads these rather than the nodes (see leafBoxes_).
+  // The tree's leaf boxes (x, y, z as the leaves hold them) in capsule order, in one array: a rope's
+  // self-contact walk (rope_world.cpp, collideTrees) reads these rather than the nodes (see leafBoxes_).
   const std::vector<btDbvtVolume>& leafBoxes() const { return leafBoxes_; }
   // Midphase: the capsules whose leaves meet the box [lo, hi] (world frame) grown by the part of the
   // speculative margin the leaves do not carry, in increasing order, into `out` (cleared first);
@@ -161,11 +155,6 @@ class CapsuleProxies {
   void resize(int count);
   // updateBoxes without the broadphase: the capsules, their leaves and the object's box.
   int fitBoxes(const Rod& rod, double predictionTime, double margin);
-  // Writes every tree node's capsule range (firstCapsule, lastCapsule) into the w lanes of its box's
-  // corners, which Bullet's double-precision tree never reads or writes (its box tests and merges use
-  // x, y and z; the single-precision SSE merge takes the lanes' min and max, which keeps the ranges).
-  // Nothing if they are current (no refit or resize since the last call).
-  void indexTree();
   // The object's box from the tree's root (false, and the box kept, if too large), without Bullet.
   bool setObjectBox();
 
@@ -186,8 +175,6 @@ class CapsuleProxies {
   mutable bool arcsCurrent_ = false;    // arcs_ belong to the knots of the last rebuild ...
   mutable std::uint64_t arcsRevision_ = 0;  // ... and to the rod's integrals of this revision
   mutable std::vector<double> restStarts_;  // scratch of endArcs: rest arclength at each span start
-  bool treeIndexed_ = false;              // the tree's capsule ranges are current (indexTree)
-  std::vector<btDbvtNode*> treeOrder_;    // scratch of indexTree: the nodes, parents first
   std::vector<double> middles_;  // scratch of updateBoxes: each capsule's middle parameter
   PointList points_;             // scratch: curve points or velocities at ends_ or middles_
   std::vector<std::unique_ptr<RopeCapsuleShape>> capsuleShapes_;

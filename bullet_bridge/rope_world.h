@@ -130,6 +130,8 @@ class RopeWorld {
   RopePairs ropePairs_;  // filled by Bullet's dispatch (collision_object/rope_dispatch.h)
   std::unique_ptr<Action> action_;
   std::vector<std::pair<const btDbvtNode*, const btDbvtNode*>> treeStack_;  // scratch of the tree-tree walks
+  struct SelfWalk;                     // scratch of a long rope's self-contact walk (rope_world.cpp)
+  std::unique_ptr<SelfWalk> selfWalk_;
   std::vector<std::pair<RopeObject*, RopeObject*>> ropeRopePairs_;  // scratch
   std::vector<RopeObject*> ropes_;
   std::vector<std::vector<const btCollisionObject*>> candidates_;  // per rope, scratch

@@ -125,10 +125,10 @@ TEST(CapsuleProxies, EndSpeedsAreTheCurveSpeedsAtTheCapsuleEndsOfTheLastRebuild)
   }
 }
 
-// Every node's capsule range (firstCapsule .. lastCapsule) is the smallest and largest capsule index of
-// the leaves below it, and the end arclengths are the rest arclengths at the capsule ends, through
-// refits, knot insertions (capsules added) and removals (capsules dropped).
-TEST(CapsuleProxies, TreeNodesNameTheirCapsulesAndEndArcsFollowTheRestCurve) {
+// The tree holds one leaf per capsule, each the box leafBoxes() mirrors (the self-contact walk reads
+// the array, rope_world.cpp), and the end arclengths are the rest arclengths at the capsule ends,
+// through refits, knot insertions (capsules added) and removals (capsules dropped).
+TEST(CapsuleProxies, TreeLeavesAreTheLeafBoxesAndEndArcsFollowTheRestCurve) {
   demos::PhysicsWorld physics(btVector3(0, 0, 0));
   RopeObject rope(Rod::fromSegment(straightRope(), Vec3(0, 1, 0), Vec3(1, 1, 0)));
   physics.ropes().addRope(rope);
@@ -136,29 +136,29 @@ TEST(CapsuleProxies, TreeNodesNameTheirCapsulesAndEndArcsFollowTheRestCurve) {
   int internalNodes = 0, changes = 0;
   const auto check = [&](const char* when) {
     const CapsuleProxies& proxies = rope.proxies();
-    // Each node's leaves, by a walk of its own (children before the node).
-    struct Range {
-      int first, last, leaves;
-    };
-    std::function<Range(const btDbvtNode*)> below = [&](const btDbvtNode* node) -> Range {
-      if (node->isleaf()) return {node->dataAsInt, node->dataAsInt, 1};
-      const Range a = below(node->childs[0]), b = below(node->childs[1]);
-      ++internalNodes;
-      return {std::min(a.first, b.first), std::max(a.last, b.last), a.leaves + b.leaves};
-    };
-    std::function<void(const btDbvtNode*)> expectRanges = [&](const btDbvtNode* node) {
-      const Range range = below(node);
-      EXPECT_EQ(CapsuleProxies::firstCapsule(*node), range.first) << when;
-      EXPECT_EQ(CapsuleProxies::lastCapsule(*node), range.last) << when;
+    // Each leaf once, holding its capsule's box as leafBoxes() has it.
+    std::vector<int> seen(static_cast<std::size_t>(proxies.size()), 0);
+    std::function<void(const btDbvtNode*)> visit = [&](const btDbvtNode* node) {
       if (node->isinternal()) {
-        expectRanges(node->childs[0]);
-        expectRanges(node->childs[1]);
+        ++internalNodes;
+        visit(node->childs[0]);
+        visit(node->childs[1]);
+        return;
+      }
+      ASSERT_GE(node->dataAsInt, 0) << when;
+      ASSERT_LT(node->dataAsInt, proxies.size()) << when;
+      ++seen[static_cast<std::size_t>(node->dataAsInt)];
+      const btDbvtVolume& mirror = proxies.leafBoxes()[static_cast<std::size_t>(node->dataAsInt)];
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(node->volume.Mins()[k], mirror.Mins()[k]) << when << ", capsule " << node->dataAsInt;
+        EXPECT_EQ(node->volume.Maxs()[k], mirror.Maxs()[k]) << when << ", capsule " << node->dataAsInt;
       }
     };
+    ASSERT_EQ(proxies.leafBoxes().size(), static_cast<std::size_t>(proxies.size())) << when;
     const btDbvtNode* root = proxies.tree().m_root;
     ASSERT_NE(root, nullptr);
-    EXPECT_EQ(below(root).leaves, proxies.size()) << when;
-    expectRanges(root);
+    visit(root);
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), proxies.size()) << when;
     // A rope made from a segment: its parameter is the rest arclength from its start.
     const std::vector<double>& arcs = proxies.endArcs(rope.rod());
     ASSERT_EQ(arcs.size(), static_cast<std::size_t>(proxies.size()) + 1) << when;

@@ -2,7 +2,8 @@
 // The tree-tree walk (bullet_bridge/detail/tree_pairs.h) reports exactly the leaf pairs of Bullet's
 // own btDbvt::collideTT, for two trees and for a tree with itself, on chains of boxes like a rope's
 // (neighbours overlap, some touch exactly) after updates and removals, and none for a NaN box; with a
-// filter of subtree pairs, exactly the pairs the filter keeps.
+// filter of subtree pairs, exactly the pairs the filter keeps; and the array forms (every pair of an
+// array of leaf boxes, a walk over a tree of them by index) the same pairs again.
 #include "bullet_bridge/detail/tree_pairs.h"
 
 #include <gtest/gtest.h>
@@ -199,6 +200,69 @@ TEST(TreePairs, AnArrayOfLeafBoxesGivesTheWalksPairs) {
       } else if (count > 4) {
         EXPECT_GT(scanned.size(), 0u) << count << " leaves";
         EXPECT_LT(scanned.size(), unfiltered) << count << " leaves";
+      }
+    }
+  }
+}
+
+// The walk over an indexed tree (selfOverlappingBoxPairs) reports the array scan's pairs, for 0 to
+// 260 leaves (odd counts leave one-child nodes at every level), unfiltered and with monotone filters
+// of index ranges: a gap along the chain (as the self-contact exclusion) and the x extent of the
+// ranges' boxes. One tree is rebuilt for every count (levels reused, larger and smaller).
+TEST(TreePairs, AnIndexedTreeOfLeafBoxesGivesTheArrayScansPairs) {
+  IndexedBoxTree tree;
+  std::vector<IndexedNodePair> stack;
+  for (const int count : {260, 0, 1, 2, 3, 5, 17, 100, 33}) {
+    std::mt19937_64 random(20261208 + static_cast<unsigned>(count));
+    btDbvt dbvt;
+    std::vector<btDbvtVolume> boxes;
+    for (const btDbvtNode* leaf : buildChain(dbvt, random, count, 0.0)) boxes.push_back(leaf->volume);
+    tree.build(boxes);
+    EXPECT_EQ(tree.count(), count);
+    // Index range [x0, x1] of a node: the union of its boxes along x, for the extent filter.
+    const auto extent = [&](int x0, int x1, int y0, int y1) {
+      btScalar low = boxes[static_cast<std::size_t>(x0)].Mins().x(), high = boxes[static_cast<std::size_t>(x0)].Maxs().x();
+      for (const auto& [first, last] : {std::pair<int, int>(x0, x1), std::pair<int, int>(y0, y1)}) {
+        for (int i = first; i <= last; ++i) {
+          low = std::min(low, boxes[static_cast<std::size_t>(i)].Mins().x());
+          high = std::max(high, boxes[static_cast<std::size_t>(i)].Maxs().x());
+        }
+      }
+      return high - low;
+    };
+    std::size_t unfiltered = 0;
+    for (int filter = 0; filter < 3; ++filter) {
+      const auto mayPair = [&](int x0, int x1, int y0, int y1) {
+        if (filter == 1) return std::max(y1 - x0, x1 - y0) >= 5;  // the chain's far ends at least 5 apart
+        if (filter == 2) return extent(x0, x1, y0, y1) >= btScalar(0.009);
+        return true;
+      };
+      LeafPairs walked, scanned;
+      long asked = 0;
+      selfOverlappingBoxPairs(
+          tree, stack, [&](int i, int j) { walked.emplace_back(i, j); },
+          [&](int x0, int x1, int y0, int y1) {
+            ++asked;
+            EXPECT_LE(x0, x1);
+            EXPECT_LE(y0, y1);
+            EXPECT_TRUE((x0 == y0 && x1 == y1) || x1 < y0) << x0 << ".." << x1 << " with " << y0 << ".." << y1;
+            return mayPair(x0, x1, y0, y1);
+          });
+      overlappingBoxPairs(boxes, [&](int i, int j) { scanned.emplace_back(i, j); },
+                          [&](int i, int j) { return mayPair(i, i, j, j); });
+      for (const auto& [i, j] : walked) EXPECT_LT(i, j);
+      expectSamePairs(walked, scanned, true);
+      if (count < 2) {
+        EXPECT_EQ(asked, 0) << count << " leaves";
+      }
+      // Not vacuous: neighbours always meet; on the longer chains each filter keeps some pairs and
+      // drops others.
+      if (filter == 0) {
+        EXPECT_GE(scanned.size(), static_cast<std::size_t>(std::max(0, count - 1))) << count << " leaves";
+        unfiltered = scanned.size();
+      } else if (count >= 17) {
+        EXPECT_GT(scanned.size(), 0u) << count << " leaves, filter " << filter;
+        EXPECT_LT(scanned.size(), unfiltered) << count << " leaves, filter " << filter;
       }
     }
   }

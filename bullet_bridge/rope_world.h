@@ -120,10 +120,12 @@ class RopeWorld {
   void failRopeContacts(const char* message);
   void recoverFromException(const char* message) noexcept;
 
-  // Self-contact and rope-rope capsule pairs from the ropes' trees (ropeA <= ropeB by world index).
+  // Rope-rope capsule pairs of two ropes from their trees (ropeA < ropeB by world index).
   void collideTrees(const RopeObject& a, const RopeObject& b);
-  // The rope's self-contact pairs (if its settings want them); true if it found any.
-  bool collideSelf(const RopeObject& rope);
+  // The rope's self-contact pairs (if its settings want them) for the substep h (s); true if it
+  // found any.
+  bool collideSelf(const RopeObject& rope, double h);
+  void findSelfPairs(const RopeObject& rope, double h);
 
   btDiscreteDynamicsWorld& world_;
   std::unique_ptr<RopeDispatch> dispatch_;

@@ -172,7 +172,14 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
       sample.object = &object;
       sample.body = body;
       sample.normal = toVec(geometry.contact.normal);
-      sample.ropeVelocity = rod.velocity(geometry.s);
+      const KnotVector& knots = rod.knots();
+      const int span = knots.findSpan(geometry.s);
+      BasisValues basis;
+      evaluateBasis(knots, span, geometry.s, 0, basis);
+      sample.first = span - knots.degree();
+      sample.count = knots.degree() + 1;
+      for (int a = 0; a < sample.count; ++a) sample.basis[a] = basis.d[0][static_cast<std::size_t>(a)];
+      sample.ropeVelocity = curveAt(sample, rod.velocities());
       sample.bodyVelocity = pointVelocity(object, geometry.contact.pointOnBody, geometry.contact.childIndex);
       // Friction state: the stored anchor (interpolated along the curve), or a new one here.
       const Vec3 slip = tangential(sample.ropeVelocity - sample.bodyVelocity, sample.normal);
@@ -379,17 +386,13 @@ void BodyContacts::gatherSlidingTerms(const Rod& rod, double h) {
   slidingPull_.resize(m);
   slidingGradient_.resize(m);
   boundRhs_.resize(m);
-  BasisValues basis;
   for (std::size_t j = 0; j < m; ++j) {
     const Sample& sample = samples_[static_cast<std::size_t>(sliding_[j])];
-    const double s = sample.geometry.s;
-    const int span = knots.findSpan(s);
-    evaluateBasis(knots, span, s, 0, basis);
-    slidingFirst_[j] = span - knots.degree();
-    for (std::size_t a = 0; a < width; ++a) slidingBasis_[j * width + a] = basis.d[0][a];
+    slidingFirst_[j] = sample.first;
+    for (std::size_t a = 0; a < width; ++a) slidingBasis_[j * width + a] = sample.basis[a];
     slidingPull_[j] = -sample.law.friction * h * sample.friction.direction;
     slidingGradient_[j] = -(h * sample.spring.stiffness + sample.spring.damping).transpose() * sample.normal;
-    const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, rod.trialVelocity(s), h);
+    const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, curveAt(sample, rod.trialVelocities()), h);
     boundRhs_[j] = force.dot(sample.normal) - sample.friction.normalForce;
   }
   correction_.resize(static_cast<std::size_t>(3 * rod.controlPointCount()));
@@ -421,9 +424,16 @@ double BodyContacts::normalForceChange(int j) const {
   return slidingGradient_[u].dot(velocity);
 }
 
+Vec3 BodyContacts::curveAt(const Sample& sample, const PointList& field) {
+  const Vec3* q = field.data() + sample.first;
+  Vec3 value = Vec3::Zero();
+  for (int a = 0; a < sample.count; ++a) value += sample.basis[a] * q[a];
+  return value;
+}
+
 BodyContacts::Change BodyContacts::changeFor(const Sample& sample, const Rod& rod, double h, Vec3& uNew,
                                              double& normalForce, Vec3& tangentForce) {
-  uNew = rod.trialVelocity(sample.geometry.s);
+  uNew = curveAt(sample, rod.trialVelocities());
   const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, uNew, h);
   normalForce = force.dot(sample.normal);
   if (normalForce < 0.0) return Change::kRelease;  // pulls the rope onto the body
@@ -483,7 +493,7 @@ void BodyContacts::finish(Rod& rod, double h, double concentratedContactRatio,
   for (const Sample& sample : samples_) {
     if (!sample.active) continue;
     const double s = sample.geometry.s;
-    const Vec3 uNew = rod.trialVelocity(s);
+    const Vec3 uNew = curveAt(sample, rod.trialVelocities());
     const Vec3 force = endOfStepForce(sample.spring, sample.ropeVelocity, uNew, h);
     const btVector3 point = bodyPointAfter(sample, uNew - sample.bodyVelocity, rod.settings().radius, h);
     RopeContactRecord& record = records[static_cast<std::size_t>(sample.record)];

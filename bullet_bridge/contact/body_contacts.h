@@ -109,7 +109,16 @@ class BodyContacts {
     ContactSpring spring;
     bool active = false;
     int record = -1;
+    // The basis at geometry.s on the knots of the substep, which stay until the trial is committed:
+    // every pass reads the trial's velocity there (curveAt), so the span search and basis are done
+    // once per sample instead of once per pass.
+    int first = 0;     // first control point with b_i(s) != 0
+    int count = 0;     // degree + 1
+    double basis[kMaxDegree + 1] = {};
   };
+  // sum_i b_i(s) field_i at the sample: curvePosition's sum in its order, so the same bits as
+  // rod.velocity(s) or rod.trialVelocity(s) for the rod's velocities or trial velocities.
+  static Vec3 curveAt(const Sample& sample, const PointList& field);
   void gatherBody(const Rod& rod, const CapsuleProxies& proxies, const btCollisionObject& object,
                   const BulletRopeSettings& settings, const Exclusion& excluded, const FrictionOf& friction, double h,
                   RopeStepRecord& step);

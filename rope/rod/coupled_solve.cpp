@@ -183,6 +183,9 @@ void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<Poin
   }
 
   acting_.clear();
+  rootKnown_.assign(m, 0);
+  rootOf_.resize(m);
+  rootAdmittance_.resize(m);
   zColumn_.assign(m, -1);
   zColumns_ = 0;
   deltaImpulses_.assign(m, Vec3::Zero());  // no solve yet: solvedRelativeChange is the trial's change
@@ -215,9 +218,15 @@ bool CoupledSolve::solveImpulses(const std::vector<CouplingLaw>& laws, std::vect
   impulse_.resize(3 * a);
   for (int i = 0; i < a; ++i) {
     const size_t k = static_cast<size_t>(acting_[static_cast<size_t>(i)]);
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (laws[k].admittance + laws[k].admittance.transpose()));
-    roots_[static_cast<size_t>(i)] =
-        eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+    // An active set asks again with most laws unchanged: their roots are kept (per coupling, since
+    // prepare(); compared bit for bit), the same bits as computing them again.
+    if (!rootKnown_[k] || std::memcmp(rootAdmittance_[k].data(), laws[k].admittance.data(), sizeof(Eigen::Matrix3d)) != 0) {
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (laws[k].admittance + laws[k].admittance.transpose()));
+      rootOf_[k] = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+      rootAdmittance_[k] = laws[k].admittance;
+      rootKnown_[k] = 1;
+    }
+    roots_[static_cast<size_t>(i)] = rootOf_[k];
     impulse_.segment<3>(3 * i) = laws[k].impulse;
     for (int j = 0; j <= i; ++j) {
       const Eigen::Matrix3d block = zBlockCached(k, static_cast<size_t>(acting_[static_cast<size_t>(j)]));

@@ -124,6 +124,9 @@ class CoupledSolve {
   Eigen::VectorXd rhs_, impulse_;
   Eigen::VectorXd u_, p_;  // the solve's u and p (kept: no allocation while the acting count stays)
   std::vector<Eigen::Matrix3d> roots_;  // L with W = L L^T, per acting coupling
+  // Per coupling: the last admittance whose root was computed since prepare(), and that root.
+  std::vector<Eigen::Matrix3d> rootOf_, rootAdmittance_;
+  std::vector<char> rootKnown_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
   // Every rod's velocity change dv = P J^T p for the impulses (per rod 3n, m/s), and which rods it
   // touches: the correction apply() makes, and what solvedRelativeChange reads for the last solve's

@@ -283,6 +283,20 @@ TEST(CoupledSolve, RepeatedPassesPredictWhatAFreshSolvePredicts) {
     EXPECT_EQ(std::memcmp(impulses[static_cast<size_t>(k)].data(), freshImpulses[static_cast<size_t>(k)].data(),
                           sizeof(double) * 3), 0) << k;
   }
+  // And back to the first laws (each coupling's law square root is kept between passes while its law
+  // is unchanged): the bits of the first solve.
+  std::vector<Vec3> first;
+  ASSERT_TRUE(fresh.solveImpulses(setup.laws, first));
+  ASSERT_TRUE(solve.solveImpulses(setup.laws, impulses));
+  CoupledSolve firstOnly;
+  firstOnly.prepare({&setup.a, &setup.b}, setup.couplings);
+  std::vector<Vec3> firstOnlyImpulses;
+  ASSERT_TRUE(firstOnly.solveImpulses(setup.laws, firstOnlyImpulses));
+  for (int k = 0; k < solve.size(); ++k) {
+    const size_t u = static_cast<size_t>(k);
+    EXPECT_EQ(std::memcmp(impulses[u].data(), firstOnlyImpulses[u].data(), sizeof(double) * 3), 0) << k;
+    EXPECT_EQ(std::memcmp(first[u].data(), firstOnlyImpulses[u].data(), sizeof(double) * 3), 0) << k;
+  }
 }
 
 TEST(CoupledSolve, RejectsBadInputAndLeavesRodsAlone) {

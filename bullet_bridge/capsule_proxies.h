@@ -134,8 +134,9 @@ class CapsuleProxies {
   // The midphase tree (leaves: swept capsule boxes; leaf->dataAsInt = capsule index): Bullet's queries
   // and the rope-body and rope-rope midphase walk it.
   const btDbvt& tree() const { return *shape_->getDynamicAabbTree(); }
-  // The tree's leaf boxes (x, y, z as the leaves hold them) in capsule order, in one array: a rope's
-  // self-contact walk (rope_world.cpp, collideTrees) reads these rather than the nodes (see leafBoxes_).
+  // The tree's leaf boxes (x, y, z as the leaves hold them) in capsule order, in one array: a short
+  // rope's self-contact scan (rope_world.cpp, findSelfPairs) reads these rather than the nodes (see
+  // leafBoxes_).
   const std::vector<btDbvtVolume>& leafBoxes() const { return leafBoxes_; }
   // Midphase: the capsules whose leaves meet the box [lo, hi] (world frame) grown by the part of the
   // speculative margin the leaves do not carry, in increasing order, into `out` (cleared first);

@@ -26,7 +26,7 @@ namespace rope::bullet {
 namespace {
 
 // Up to this many capsules a rope's self-contact candidates are found by testing every pair of its
-// leaf boxes (at most 105 pairs of 16) rather than by walking its tree (RopeWorld::collideTrees).
+// leaf boxes (at most 105 pairs of 16) rather than by walking a tree (RopeWorld::findSelfPairs).
 constexpr int kLinearSelfScanCapsules = 16;
 
 }  // namespace

@@ -125,6 +125,8 @@ class RopeWorld {
   // The rope's self-contact pairs (if its settings want them) for the substep h (s); true if it
   // found any.
   bool collideSelf(const RopeObject& rope, double h);
+  // collideSelf's search: the rope's capsule pairs that the rope-rope solve may keep, appended to
+  // capsulePairs_ (rope_world.cpp says how).
   void findSelfPairs(const RopeObject& rope, double h);
 
   btDiscreteDynamicsWorld& world_;

@@ -424,7 +424,8 @@ void RopeWorld::findSelfPairs(const RopeObject& rope, double h) {
   // exactly the pairs it saw from the tree, and fewer are found only to be dropped (the 2 m pile: 5,100
   // pairs per substep instead of 6,400, for the 3,550 the filter keeps).
   const std::vector<double>& speeds = proxies.endSpeeds(rope.rod());
-  const double margin = std::min(rope.settings().speculativeMargin, radius);  // as RopeRopeContacts::reach
+  const double margin = RopeRopeContacts::pairMargin(rope.settings().speculativeMargin, radius,
+                                                     rope.settings().speculativeMargin, radius);
   std::vector<btDbvtVolume>& boxes = selfWalk_->boxes;
   boxes.resize(static_cast<std::size_t>(capsules));
   for (int i = 0; i < capsules; ++i) {

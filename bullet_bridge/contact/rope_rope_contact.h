@@ -79,6 +79,13 @@ class RopeRopeContacts {
   // contact is reported inactive).
   int solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs, double h,
             std::vector<RopePairContactRecord>& records);
+  // m: the part of two ropes' speculative margins (BulletRopeSettings::speculativeMargin, m) a pair's
+  // candidates reach beyond the radii (r, m) before the step's travel: the larger margin, at most half
+  // the radii's sum (the body margin, sized for fast ropes against thin bodies, would flood a knot
+  // with distant pairs). Shared with the self-contact walk (rope_world.cpp), whose boxes must cover it.
+  static double pairMargin(double marginA, double radiusA, double marginB, double radiusB) {
+    return std::min(std::max(marginA, marginB), 0.5 * (radiusA + radiusB));
+  }
   // Replaces the product of the two ropes' coefficients (friction_combination.h); empty: the product.
   void setFrictionCombiner(RopeFrictionCombiner combiner) { combiner_ = std::move(combiner); }
   // Lets go of the stick state of one rope's distributed contacts, or of all: a rope that leaves the
@@ -176,10 +183,8 @@ class RopeRopeContacts {
   double reach(const RopeCapsulePair& pair) const {
     const RopeFacts& a = facts_[static_cast<std::size_t>(pair.ropeA)];
     const RopeFacts& b = facts_[static_cast<std::size_t>(pair.ropeB)];
-    // Candidates: gaps that the step can close (both ropes' speeds) plus a fraction of the radii; the
-    // body margin (speculativeMargin, sized for fast ropes against thin bodies) would flood a knot
-    // with distant pairs.
-    const double margin = std::min(std::max(a.margin, b.margin), 0.5 * (a.radius + b.radius));
+    // Candidates: gaps that the step can close (both ropes' speeds) plus part of the margins.
+    const double margin = pairMargin(a.margin, a.radius, b.margin, b.radius);
     return margin + h_ * (boxes_[static_cast<std::size_t>(pair.ropeA)][static_cast<std::size_t>(pair.capsuleA)].speed +
                           boxes_[static_cast<std::size_t>(pair.ropeB)][static_cast<std::size_t>(pair.capsuleB)].speed);
   }

@@ -142,6 +142,7 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
   const btVector3 bodyGrow(grow, grow, grow);
   proxies.capsulesOverlapping(handle->m_aabbMin - bodyGrow, handle->m_aabbMax + bodyGrow, nearCapsules_, treeStack_);
   const std::vector<double>* speeds = nearCapsules_.empty() ? nullptr : &proxies.endSpeeds(rod);
+  int spanHint = -1;
   for (const int i : nearCapsules_) {
     const Capsule capsule = proxies.capsule(i);
     const CapsuleProxy& proxy = proxies.proxy(i);
@@ -164,7 +165,7 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
     for (const Contact& c : chordContacts_)
       if (c.distance < nearest->distance) nearest = &c;
     scratch_.clear();
-    sampler_.sampleCapsule(rod, i, proxy.s0, proxy.s1, capsule.radius, object, reach, *nearest,
+    sampler_.sampleCapsule(rod, i, proxy.s0, proxy.s1, capsule, object, reach, *nearest,
                            settings.contactQuadraturePoints, scratch_);
     for (const ContactSample& geometry : scratch_) {
       Sample sample;
@@ -173,7 +174,9 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
       sample.body = body;
       sample.normal = toVec(geometry.contact.normal);
       const KnotVector& knots = rod.knots();
-      const int span = knots.findSpan(geometry.s);
+      // Samples come in order along the rope: the span search starts from the last sample's span.
+      const int span = knots.findSpanNear(geometry.s, spanHint);
+      spanHint = span;
       BasisValues basis;
       evaluateBasis(knots, span, geometry.s, 0, basis);
       sample.first = span - knots.degree();

@@ -3,6 +3,7 @@
 
 #include "bullet_bridge/detail/bullet_math.h"
 #include "bullet_bridge/find_contacts.h"
+#include "rope/spline/bspline_curve.h"
 #include "rope/spline/gauss_legendre.h"
 
 namespace rope::bullet {
@@ -23,9 +24,15 @@ bool LineContactSampler::ballContact(const btVector3& centre, btScalar radius, c
   return true;
 }
 
+Vec3 LineContactSampler::positionOf(const Rod& rod, double s) {
+  // rod.position(s), bitwise; the span search starts from the last one's (one capsule piece lies in
+  // one knot span, so it mostly finds it at once).
+  return curvePositionNear(rod.knots(), rod.controlPoints(), s, span_);
+}
+
 bool LineContactSampler::touching(const Rod& rod, double s, btScalar radius, const btCollisionObject& object,
                                   double reach) {
-  return ballContact(toBullet(rod.position(s)), radius, object, reach, probe_);
+  return ballContact(toBullet(positionOf(rod, s)), radius, object, reach, probe_);
 }
 
 double LineContactSampler::bisect(const Rod& rod, double free, double inside, btScalar radius,
@@ -37,12 +44,13 @@ double LineContactSampler::bisect(const Rod& rod, double free, double inside, bt
   return inside;
 }
 
-void LineContactSampler::sampleCapsule(const Rod& rod, int capsule, double s0, double s1, btScalar radius,
+void LineContactSampler::sampleCapsule(const Rod& rod, int capsule, double s0, double s1, const Capsule& chord,
                                        const btCollisionObject& object, double reach, const Contact& chordContact,
                                        int points, std::vector<ContactSample>& out) {
+  const btScalar radius = chord.radius;
   const double nearest = s0 + static_cast<double>(chordContact.t) * (s1 - s0);
-  const bool atStart = touching(rod, s0, radius, object, reach);
-  const bool atEnd = touching(rod, s1, radius, object, reach);
+  const bool atStart = ballContact(chord.a, radius, object, reach, probe_);  // touching(rod, s0, ...)
+  const bool atEnd = ballContact(chord.b, radius, object, reach, probe_);
   const bool atNearest = touching(rod, nearest, radius, object, reach);
   if (!atStart && !atEnd && !atNearest) return;  // the chord touched, the curve does not
   // The touching stretch [a, b]: from the first to the last touching parameter, ends bisected.
@@ -55,7 +63,7 @@ void LineContactSampler::sampleCapsule(const Rod& rod, int capsule, double s0, d
   for (int q = 0; q < rule.count; ++q) {
     ContactSample sample;
     sample.s = 0.5 * (a + b) + 0.5 * (b - a) * rule.nodes[q];
-    if (!ballContact(toBullet(rod.position(sample.s)), radius, object, reach, sample.contact)) continue;
+    if (!ballContact(toBullet(positionOf(rod, sample.s)), radius, object, reach, sample.contact)) continue;
     // integral over [a, b] of f dl0 = (b - a)/2 sum_q w_q f(s_q) l0'(s_q)
     sample.weight = 0.5 * (b - a) * rule.weights[q] * rod.restMetric(sample.s);
     sample.capsule = capsule;

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "bullet_bridge/bullet_precision.h"
+#include "bullet_bridge/capsule.h"
 #include "bullet_bridge/contact.h"
 #include "rope/rod/rod.h"
 
@@ -53,10 +54,12 @@ class LineContactSampler {
 
   // Appends the samples of the capsule piece [s0, s1] (index `capsule`) of `rod` against `object`
   // whose gap is <= reach (m): `points` Gauss-Legendre nodes on the piece's touching stretch.
+  // chord: the capsule (radius: the rope's), whose axis ends a and b are C(s0) and C(s1) of the rod's
+  // state as CapsuleProxies evaluated them (the same bits as rod.position; not evaluated again).
   // chordContact: the capsule's own contact with the body (findContacts on the chord), which says
   // where the piece is nearest the body. Throws InvalidArgument like findContacts for an unsupported
   // shape (before appending anything).
-  void sampleCapsule(const Rod& rod, int capsule, double s0, double s1, btScalar radius,
+  void sampleCapsule(const Rod& rod, int capsule, double s0, double s1, const Capsule& chord,
                      const btCollisionObject& object, double reach, const Contact& chordContact, int points,
                      std::vector<ContactSample>& out);
 
@@ -65,6 +68,8 @@ class LineContactSampler {
                    Contact& contact);
 
  private:
+  // C(s) of the rod (Rod::position), the span search started from the last point's span.
+  Vec3 positionOf(const Rod& rod, double s);
   bool touching(const Rod& rod, double s, btScalar radius, const btCollisionObject& object, double reach);
   // Boundary of the touching set between a free parameter and a touching one.
   double bisect(const Rod& rod, double free, double inside, btScalar radius, const btCollisionObject& object,
@@ -72,6 +77,7 @@ class LineContactSampler {
 
   std::vector<Contact> scratch_;
   Contact probe_;
+  int span_ = -1;  // the knot span of the last point positionOf evaluated (a hint: any value is safe)
 };
 
 }  // namespace rope::bullet

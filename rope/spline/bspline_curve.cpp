@@ -60,6 +60,16 @@ Vec3 curvePosition(const KnotVector& knots, const PointList& points, double s) {
   return out.position;
 }
 
+Vec3 curvePositionNear(const KnotVector& knots, const PointList& points, double s, int& span) {
+  if (!knots.contains(s)) knots.findSpan(s);  // throws InvalidArgument("s") as curvePosition does
+  span = knots.findSpanNear(s, span);
+  BasisValues basis;
+  evaluateBasis(knots, span, s, 0, basis);
+  CurvePoint out;
+  accumulate<0>(basis, points, out);
+  return out.position;
+}
+
 BSplineCurve::BSplineCurve(KnotVector knots, PointList controlPoints)
     : knots_(std::move(knots)), points_(std::move(controlPoints)) {
   if (static_cast<int>(points_.size()) != knots_.controlPointCount()) {
@@ -99,18 +109,8 @@ void checkParameters(const KnotVector& knots, const std::vector<double>& s) {
   }
 }
 
-// Span of s, reusing the previous one or stepping to the next non-empty one when s has moved
-// just past it (sorted input then never searches); anything else falls back to the binary search.
-int spanNear(const KnotVector& knots, int previous, double s) {
-  if (previous >= 0) {
-    if (s >= knots[previous] && s < knots[previous + 1]) return previous;
-    const int last = knots.controlPointCount() - 1;
-    int next = previous + 1;
-    while (next < last && knots[next + 1] == knots[next]) ++next;  // skip empty spans
-    if (next <= last && s >= knots[next] && s < knots[next + 1]) return next;
-  }
-  return knots.findSpanUnchecked(s);
-}
+// Span of s, reusing the previous one (KnotVector::findSpanNear: sorted input never searches).
+int spanNear(const KnotVector& knots, int previous, double s) { return knots.findSpanNear(s, previous); }
 
 }  // namespace
 

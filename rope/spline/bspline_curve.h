@@ -22,6 +22,9 @@ struct CurvePoint {
 // They validate s (InvalidArgument "s") but assume points.size() == knots.controlPointCount().
 CurvePoint evaluateCurve(const KnotVector& knots, const PointList& points, double s);
 Vec3 curvePosition(const KnotVector& knots, const PointList& points, double s);
+// curvePosition(s), bitwise, with the span search started from `span` (KnotVector::findSpanNear), which
+// is set to s's span: for a caller that asks for points in order along the curve or within one span.
+Vec3 curvePositionNear(const KnotVector& knots, const PointList& points, double s, int& span);
 // curvePosition at every s[i], into out (resized): bitwise the same values, but sorted parameters
 // reuse the previous span instead of searching (any order is correct). Every s is validated
 // (InvalidArgument "s[i]") before anything is written.

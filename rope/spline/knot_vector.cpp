@@ -122,6 +122,19 @@ int KnotVector::findSpanUnchecked(double s) const {
   return static_cast<int>(std::upper_bound(begin + degree_ + 1, begin + n, s) - begin) - 1;
 }
 
+int KnotVector::findSpanNear(double s, int hint) const {
+  const int last = controlPointCount() - 1;
+  if (hint >= degree_ && hint <= last) {
+    const double* knots = knots_.data();
+    // Span k holds [s_k, s_{k+1}) (the right end of the range is findSpanUnchecked's own case).
+    if (s >= knots[hint] && s < knots[hint + 1]) return hint;
+    int next = hint + 1;
+    while (next < last && knots[next + 1] == knots[next]) ++next;  // skip empty spans
+    if (next <= last && s >= knots[next] && s < knots[next + 1]) return next;
+  }
+  return findSpanUnchecked(s);
+}
+
 int KnotVector::multiplicity(double s) const {
   if (!std::isfinite(s)) return 0;
   const auto range = std::equal_range(knots_.begin(), knots_.end(), s);

@@ -45,6 +45,10 @@ class KnotVector {
   int findSpan(double s) const;
   // The same without validation, for inner loops whose s is known to be valid.
   int findSpanUnchecked(double s) const;
+  // findSpanUnchecked(s), found without a search when s lies in span `hint` or in the non-empty span
+  // after it (parameters asked in order along the curve, or within one known span); any other hint,
+  // -1 included, searches. Always the same span as findSpanUnchecked.
+  int findSpanNear(double s, int hint) const;
   // Number of knots exactly equal to s.
   int multiplicity(double s) const;
 

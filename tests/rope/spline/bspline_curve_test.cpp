@@ -124,6 +124,29 @@ TEST(BSplineCurve, FreeFunctionsMatchTheClass) {
   }
 }
 
+// curvePositionNear is curvePosition bit for bit from any span hint, and leaves the hint at s's
+// span; it rejects what curvePosition rejects.
+TEST(BSplineCurve, PositionNearAHintIsThePosition) {
+  std::mt19937 rng(26);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int degree = 1 + trial % kMaxDegree;
+    const BSplineCurve curve = test::randomCurve(rng, degree, trial % 2 == 0, degree);
+    const int last = curve.knots().controlPointCount() - 1;
+    for (double s : test::sampleParameters(rng, curve.knots(), 20)) {
+      for (const int start : {-1, degree, last, last + 5}) {
+        int span = start;
+        ASSERT_EQ(curvePositionNear(curve.knots(), curve.controlPoints(), s, span), curve.position(s));
+        ASSERT_EQ(span, curve.knots().findSpan(s));
+      }
+    }
+  }
+  const BSplineCurve curve(KnotVector::uniform(3, 6), PointList(6, Vec3::Ones()));  // valid [3, 6]
+  int span = 3;
+  expectInvalid([&] { curvePositionNear(curve.knots(), curve.controlPoints(), 6.5, span); }, "s", "6.5");
+  expectInvalid([&] { curvePositionNear(curve.knots(), curve.controlPoints(), std::nan(""), span); }, "s", "nan");
+  EXPECT_EQ(span, 3);
+}
+
 TEST(BSplineCurve, SetControlPointsReplacesThem) {
   BSplineCurve curve(KnotVector::clampedUniform(2, 4), PointList(4, Vec3::Zero()));
   curve.setControlPoint(3, Vec3(1, 2, 3));

@@ -59,6 +59,26 @@ TEST(KnotVector, FindSpanSatisfiesDefinitionOnRandomVectors) {
   }
 }
 
+// findSpanNear is findSpanUnchecked from any hint: the right span, the one before it (steps over
+// empty spans), far ones, -1 and past the last span; on vectors with repeated interior knots.
+TEST(KnotVector, FindSpanNearIsFindSpanFromAnyHint) {
+  std::mt19937 rng(12);
+  int hits = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int degree = 1 + trial % kMaxDegree;
+    const KnotVector knots = test::randomKnots(rng, degree, degree + 1 + trial % 9, trial % 2 == 0, degree + 1);
+    const int last = knots.controlPointCount() - 1;
+    for (double s : test::sampleParameters(rng, knots, 20)) {
+      const int k = knots.findSpanUnchecked(s);
+      for (int hint = -1; hint <= last + 2; ++hint) {
+        ASSERT_EQ(knots.findSpanNear(s, hint), k) << "s = " << s << ", hint " << hint << ", trial " << trial;
+      }
+      hits += k > degree ? 1 : 0;
+    }
+  }
+  EXPECT_GT(hits, 500);  // not only first spans
+}
+
 TEST(KnotVector, MultiplicityCountsEqualKnots) {
   const KnotVector knots(2, {0, 0, 0, 1, 1, 2, 3, 3, 3});
   EXPECT_EQ(knots.multiplicity(0.0), 3);

@@ -552,8 +552,10 @@ void RopeRopeContacts::rememberSampleFriction(const std::vector<RopeObject*>& ro
 
 RopeRopeContacts::Candidate RopeRopeContacts::pointContact(const Rod& rodA, const Rod& rodB, const Hit& hit,
                                                             double* centresOut) {
-  const Vec3 pointA = rodA.position(hit.sA);
-  const Vec3 pointB = rodB.position(hit.sB);
+  // The spans found here are kept as hints for the candidate's later evaluations (velocities, record).
+  int spanA = -1, spanB = -1;
+  const Vec3 pointA = curvePositionNear(rodA.knots(), rodA.controlPoints(), hit.sA, spanA);
+  const Vec3 pointB = curvePositionNear(rodB.knots(), rodB.controlPoints(), hit.sB, spanB);
   Vec3 normal = pointA - pointB;
   double centres = normal.norm();
   if (centres > 1e-12 * hit.spacing) {
@@ -567,7 +569,10 @@ RopeRopeContacts::Candidate RopeRopeContacts::pointContact(const Rod& rodA, cons
   }
   if (centresOut != nullptr) *centresOut = centres;
   // law, relativeVelocity and coupled: for the kept candidates only, after the thinning.
-  return contactBetween(hit.ropeA, hit.sA, hit.arcA, hit.ropeB, hit.sB, hit.arcB, hit.spacing, centres, normal);
+  Candidate candidate = contactBetween(hit.ropeA, hit.sA, hit.arcA, hit.ropeB, hit.sB, hit.arcB, hit.spacing, centres, normal);
+  candidate.spanA = spanA;
+  candidate.spanB = spanB;
+  return candidate;
 }
 
 int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs,
@@ -774,7 +779,11 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
                               "must return a finite value >= 0");
       }
     }
-    candidate.relativeVelocity = ropeA.rod().velocity(candidate.sA) - ropeB.rod().velocity(candidate.sB);
+    // Rod::velocity and Rod::position, bitwise, from the spans pointContact found (a sample's: searched).
+    const Rod& rodA = ropeA.rod();
+    const Rod& rodB = ropeB.rod();
+    candidate.relativeVelocity = curvePositionNear(rodA.knots(), rodA.velocities(), candidate.sA, candidate.spanA) -
+                                 curvePositionNear(rodB.knots(), rodB.velocities(), candidate.sB, candidate.spanB);
     candidate.coupled = ropeA.rod().hasTrial() && ropeB.rod().hasTrial();
     if (candidate.sample) startSample(ropeA, ropeB, candidate);
   }
@@ -786,8 +795,8 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     record.ropeB = &ropeB;
     record.sA = candidate.sA;
     record.sB = candidate.sB;
-    record.pointA = toBullet(ropeA.rod().position(candidate.sA));
-    record.pointB = toBullet(ropeB.rod().position(candidate.sB));
+    record.pointA = toBullet(curvePositionNear(ropeA.rod().knots(), ropeA.rod().controlPoints(), candidate.sA, candidate.spanA));
+    record.pointB = toBullet(curvePositionNear(ropeB.rod().knots(), ropeB.rod().controlPoints(), candidate.sB, candidate.spanB));
     record.normal = toBullet(candidate.normal);
     record.depth = -candidate.distance;
     record.weight = candidate.sample ? candidate.weight : 0.0;

@@ -112,6 +112,7 @@ class RopeRopeContacts {
     bool sample = false;      // a quadrature sample of a distributed contact (A is the sampled rope)
     double weight = 0.0;      // sample: m of rest length of A it stands for
     SampleFriction friction;  // sample: sticking (its spring's stretch) or sliding
+    int spanA = -1, spanB = -1;  // knot spans of sA, sB where known (hints for curvePositionNear)
   };
   // Where the axis of one capsule (the sampled one) touches another's (see the header comment).
   struct Stretch {

@@ -999,15 +999,22 @@ bool Rod::assembleAndSolve(double h, StepReport& report, const PointList* about)
   }
 
   BasisValues basis;
+  // Loads and springs mostly come in order along the rope (a contact's samples): each span search
+  // starts from the last one's span (findSpanNear; findSpan, which throws, for a parameter outside).
+  int hint = -1;
+  const auto spanOf = [&](double s) {
+    hint = knots_.contains(s) ? knots_.findSpanNear(s, hint) : knots_.findSpan(s);
+    return hint;
+  };
 
   for (const PointLoad& load : loads_) {
-    const int k = knots_.findSpan(load.parameter);
+    const int k = spanOf(load.parameter);
     evaluateBasis(knots_, k, load.parameter, 0, basis);
     const Vec3 force = load.impulse ? Vec3(load.force / h) : load.force;
     for (int a = 0; a < local; ++a) step_.force[static_cast<size_t>(k - d + a)] += basis.d[0][static_cast<size_t>(a)] * force;
   }
   for (const Spring& spring : springs_) {
-    const int k = knots_.findSpan(spring.parameter);
+    const int k = spanOf(spring.parameter);
     const int order = spring.derivative;  // 0: on C(s), 1: on C'(s)
     evaluateBasis(knots_, k, spring.parameter, order, basis);
     const auto& b = basis.d[static_cast<size_t>(order)];

@@ -38,7 +38,7 @@ TEST(KnotVector, UniformMatchesPaperExample) {
   EXPECT_FALSE(knots.isClampedEnd());
 }
 
-TEST(KnotVector, FindSpanSatisfiesDefinitionOnRandomVectors) {
+TEST(KnotVector, FindSpanSatisfiesDefinitionOnRandomVectorsAlsoFromAnyHint) {
   std::mt19937 rng(11);
   for (int trial = 0; trial < 400; ++trial) {
     const int degree = 1 + trial % kMaxDegree;
@@ -55,28 +55,13 @@ TEST(KnotVector, FindSpanSatisfiesDefinitionOnRandomVectors) {
         ASSERT_EQ(knots[k + 1], knots.validEnd());
       }
       ASSERT_EQ(knots.findSpanUnchecked(s), k);
-    }
-  }
-}
-
-// findSpanNear is findSpanUnchecked from any hint: the right span, the one before it (steps over
-// empty spans), far ones, -1 and past the last span; on vectors with repeated interior knots.
-TEST(KnotVector, FindSpanNearIsFindSpanFromAnyHint) {
-  std::mt19937 rng(12);
-  int hits = 0;
-  for (int trial = 0; trial < 200; ++trial) {
-    const int degree = 1 + trial % kMaxDegree;
-    const KnotVector knots = test::randomKnots(rng, degree, degree + 1 + trial % 9, trial % 2 == 0, degree + 1);
-    const int last = knots.controlPointCount() - 1;
-    for (double s : test::sampleParameters(rng, knots, 20)) {
-      const int k = knots.findSpanUnchecked(s);
-      for (int hint = -1; hint <= last + 2; ++hint) {
-        ASSERT_EQ(knots.findSpanNear(s, hint), k) << "s = " << s << ", hint " << hint << ", trial " << trial;
+      // findSpanNear from any hint: the right span, the one before it (stepping over empty spans),
+      // far ones, -1 and past the last span.
+      for (int hint = -1; hint <= knots.controlPointCount() + 1; ++hint) {
+        ASSERT_EQ(knots.findSpanNear(s, hint), k) << "s = " << s << ", hint " << hint;
       }
-      hits += k > degree ? 1 : 0;
     }
   }
-  EXPECT_GT(hits, 500);  // not only first spans
 }
 
 TEST(KnotVector, MultiplicityCountsEqualKnots) {

@@ -52,12 +52,8 @@ CurvePoint evaluateCurve(const KnotVector& knots, const PointList& points, doubl
 }
 
 Vec3 curvePosition(const KnotVector& knots, const PointList& points, double s) {
-  const int span = knots.findSpan(s);
-  BasisValues basis;
-  evaluateBasis(knots, span, s, 0, basis);
-  CurvePoint out;
-  accumulate<0>(basis, points, out);
-  return out.position;
+  int span = -1;  // no hint: a search
+  return curvePositionNear(knots, points, s, span);
 }
 
 Vec3 curvePositionNear(const KnotVector& knots, const PointList& points, double s, int& span) {
@@ -109,9 +105,6 @@ void checkParameters(const KnotVector& knots, const std::vector<double>& s) {
   }
 }
 
-// Span of s, reusing the previous one (KnotVector::findSpanNear: sorted input never searches).
-int spanNear(const KnotVector& knots, int previous, double s) { return knots.findSpanNear(s, previous); }
-
 }  // namespace
 
 void BSplineCurve::evaluate(const std::vector<double>& s, std::vector<CurvePoint>& out) const {
@@ -120,7 +113,7 @@ void BSplineCurve::evaluate(const std::vector<double>& s, std::vector<CurvePoint
   BasisValues basis;
   int span = -1;
   for (size_t i = 0; i < s.size(); ++i) {
-    span = spanNear(knots_, span, s[i]);
+    span = knots_.findSpanNear(s[i], span);  // sorted input never searches
     evaluateBasis(knots_, span, s[i], kMaxBasisDerivative, basis);
     accumulate<kMaxBasisDerivative>(basis, points_, out[i]);
   }
@@ -137,7 +130,7 @@ void curvePositions(const KnotVector& knots, const PointList& points, const std:
   CurvePoint point;
   int span = -1;
   for (size_t i = 0; i < s.size(); ++i) {
-    span = spanNear(knots, span, s[i]);
+    span = knots.findSpanNear(s[i], span);  // sorted input never searches
     evaluateBasis(knots, span, s[i], 0, basis);
     accumulate<0>(basis, points, point);
     out[i] = point.position;

@@ -47,7 +47,8 @@ class KnotVector {
   int findSpanUnchecked(double s) const;
   // findSpanUnchecked(s), found without a search when s lies in span `hint` or in the non-empty span
   // after it (parameters asked in order along the curve, or within one known span); any other hint,
-  // -1 included, searches. Always the same span as findSpanUnchecked.
+  // -1 included, searches. Always the same span as findSpanUnchecked, and unchecked as it is: s must
+  // be valid (contains(s)); curvePositionNear is the validated use.
   int findSpanNear(double s, int hint) const;
   // Number of knots exactly equal to s.
   int multiplicity(double s) const;

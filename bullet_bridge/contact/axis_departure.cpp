@@ -21,9 +21,10 @@ void boundAxisDeparture(const Rod& rod, const CapsuleProxies& proxies, std::vect
   const int degree = knots.degree();
   const int count = proxies.size();
   ends.resize(static_cast<size_t>(count) + 1);
+  int span = -1;  // the ends come in order: each span search starts from the last end's
   for (int i = 0; i <= count; ++i) {
     const double s = i < count ? proxies.proxy(i).s0 : proxies.proxy(i - 1).s1;
-    ends[static_cast<size_t>(i)] = evaluateCurve(knots, rod.controlPoints(), s);
+    ends[static_cast<size_t>(i)] = evaluateCurveNear(knots, rod.controlPoints(), s, span);
   }
   deviation.assign(static_cast<size_t>(count), std::numeric_limits<double>::infinity());
   double scale = 0.0;

@@ -16,6 +16,7 @@
 #include "rope/common/error.h"
 #include "rope/common/prefetch.h"
 #include "rope/spline/bspline_basis.h"
+#include "rope/spline/bspline_curve.h"
 
 namespace rope::bullet {
 
@@ -183,6 +184,15 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
       sample.count = knots.degree() + 1;
       for (int a = 0; a < sample.count; ++a) sample.basis[a] = basis.d[0][static_cast<std::size_t>(a)];
       sample.ropeVelocity = curveAt(sample, rod.velocities());
+      // rod.position(s) and rod.tangent(s), bitwise, from the span just found (no search).
+      const auto position = [&] {
+        int hint = span;
+        return curvePositionNear(knots, rod.controlPoints(), geometry.s, hint);
+      };
+      int derivativeSpan = span;
+      const Vec3 derivative = evaluateCurveNear(knots, rod.controlPoints(), geometry.s, derivativeSpan).firstDerivative;
+      const double derivativeNorm = derivative.norm();
+      const Vec3 tangent = derivativeNorm > 0.0 ? Vec3(derivative / derivativeNorm) : Vec3(Vec3::Zero());
       sample.bodyVelocity = pointVelocity(object, geometry.contact.pointOnBody, geometry.contact.childIndex);
       // Friction state: the stored anchor (interpolated along the curve), or a new one here.
       const Vec3 slip = tangential(sample.ropeVelocity - sample.bodyVelocity, sample.normal);
@@ -197,16 +207,16 @@ void BodyContacts::gatherBody(const Rod& rod, const CapsuleProxies& proxies, con
         sample.friction.direction = slip.normalized();
         sample.friction.speed = slip.norm();
       } else if (stored) {
-        sample.friction.displacement = tangential(rod.position(geometry.s) - toVec(anchor), sample.normal);
+        sample.friction.displacement = tangential(position() - toVec(anchor), sample.normal);
       }
       // The surface's curvature along the rope, for a rope that slides along itself (springOf; at
       // rest it changes nothing, and a resting rope costs no probe): the turn of the normal over a
       // probe step of kCurvatureProbe rope radii along the rope's tangent, one more ball query.
-      const Vec3 along = tangential(rod.tangent(geometry.s), sample.normal);
+      const Vec3 along = tangential(tangent, sample.normal);
       if (along.norm() > 0.5 && std::abs(along.dot(slip)) >= settings.frictionVelocity * along.norm()) {
         sample.along = along.normalized();
         const double step = kCurvatureProbe * radius;
-        if (sampler_.ballContact(toBullet(rod.position(geometry.s) + step * sample.along), capsule.radius, object,
+        if (sampler_.ballContact(toBullet(position() + step * sample.along), capsule.radius, object,
                                  reach + step, probe_))
           sample.curvature = sample.along.dot(toVec(probe_.normal) - sample.normal) / step;
       }

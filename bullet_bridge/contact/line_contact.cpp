@@ -65,7 +65,9 @@ void LineContactSampler::sampleCapsule(const Rod& rod, int capsule, double s0, d
     sample.s = 0.5 * (a + b) + 0.5 * (b - a) * rule.nodes[q];
     if (!ballContact(toBullet(positionOf(rod, sample.s)), radius, object, reach, sample.contact)) continue;
     // integral over [a, b] of f dl0 = (b - a)/2 sum_q w_q f(s_q) l0'(s_q)
-    sample.weight = 0.5 * (b - a) * rule.weights[q] * rod.restMetric(sample.s);
+    // l0'(s) = rod.restMetric(s), bitwise, from the span positionOf just found.
+    const double restMetric = evaluateCurveNear(rod.knots(), rod.restControlPoints(), sample.s, span_).firstDerivative.norm();
+    sample.weight = 0.5 * (b - a) * rule.weights[q] * restMetric;
     sample.capsule = capsule;
     out.push_back(sample);
   }

@@ -106,6 +106,7 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
   restArc_.resize(ropes.size());
   ends_.resize(ropes.size());
   boxes_.resize(ropes.size());
+  capsuleSpans_.resize(ropes.size());
   bends_.resize(ropes.size());
   facts_.resize(ropes.size());
   deviation_.resize(ropes.size());
@@ -150,7 +151,14 @@ void RopeRopeContacts::prepare(const std::vector<RopeObject*>& ropes, double h) 
       bends[static_cast<size_t>(i)] = (d1 / l1 - d0 / l0) / between;
     }
     boxes.resize(static_cast<size_t>(proxies.size()));
+    std::vector<int>& spans = capsuleSpans_[r];
+    spans.resize(static_cast<size_t>(proxies.size()));
+    int span = -1;
     for (int i = 0; i < proxies.size(); ++i) {
+      // A capsule lies in one knot span (capsuleEnds): the span search of a parameter on it starts
+      // there (it may end in the next one, at the capsule's end).
+      span = rod.knots().findSpanNear(proxies.proxy(i).s0, span);
+      spans[static_cast<size_t>(i)] = span;
       const Capsule capsule = proxies.capsule(i);
       AxisBox& box = boxes[static_cast<size_t>(i)];
       for (int k = 0; k < 3; ++k) {
@@ -551,14 +559,14 @@ void RopeRopeContacts::rememberSampleFriction(const std::vector<RopeObject*>& ro
 }
 
 RopeRopeContacts::Candidate RopeRopeContacts::pointContact(const Rod& rodA, const Rod& rodB, const Hit& hit,
-                                                            double* centresOut) {
+                                                            double spacing, double* centresOut) {
   // The spans found here are kept as hints for the candidate's later evaluations (velocities, record).
-  int spanA = -1, spanB = -1;
+  int spanA = hit.spanA, spanB = hit.spanB;
   const Vec3 pointA = curvePositionNear(rodA.knots(), rodA.controlPoints(), hit.sA, spanA);
   const Vec3 pointB = curvePositionNear(rodB.knots(), rodB.controlPoints(), hit.sB, spanB);
   Vec3 normal = pointA - pointB;
   double centres = normal.norm();
-  if (centres > 1e-12 * hit.spacing) {
+  if (centres > 1e-12 * spacing) {
     normal /= centres;
   } else {
     // Centre lines meet: separate across both tangents (or any direction normal to A's).
@@ -569,7 +577,7 @@ RopeRopeContacts::Candidate RopeRopeContacts::pointContact(const Rod& rodA, cons
   }
   if (centresOut != nullptr) *centresOut = centres;
   // law, relativeVelocity and coupled: for the kept candidates only, after the thinning.
-  Candidate candidate = contactBetween(hit.ropeA, hit.sA, hit.arcA, hit.ropeB, hit.sB, hit.arcB, hit.spacing, centres, normal);
+  Candidate candidate = contactBetween(hit.ropeA, hit.sA, hit.arcA, hit.ropeB, hit.sB, hit.arcB, spacing, centres, normal);
   candidate.spanA = spanA;
   candidate.spanB = spanB;
   return candidate;
@@ -637,10 +645,11 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     hit.sB = sB;
     hit.arcA = arcSA;
     hit.arcB = arcSB;
-    hit.spacing = radii;
     hit.ropeA = pair.ropeA;
     hit.ropeB = pair.ropeB;
     hit.candidate = -1;
+    hit.spanA = capsuleSpans_[static_cast<size_t>(pair.ropeA)][static_cast<size_t>(pair.capsuleA)];
+    hit.spanB = capsuleSpans_[static_cast<size_t>(pair.ropeB)][static_cast<size_t>(pair.capsuleB)];
     if (self) {
       // Until evaluated on the curve, the gap's lower bound: the axes' gap less both axes' departure
       // from the curve (axis_departure.h; once per substep for a rope with self-contact hits).
@@ -651,7 +660,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     } else {
       // Two ropes: the curve now, for the touching stretch (which rope curves round the other).
       double centres = 0.0;
-      candidates_.push_back(pointContact(rodA, rodB, hit, &centres));
+      candidates_.push_back(pointContact(rodA, rodB, hit, radii, &centres));
       hit.candidate = static_cast<int>(candidates_.size()) - 1;
       hit.gap = candidates_.back().distance;
       addTouchingStretch(ropes, pair, closest.s, closest.t, closest.distance, candidates_.back().normal, centres,
@@ -715,7 +724,8 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     return x.arcA < y.arcA;
   };
   const auto nearAccepted = [&](const Hit& hit) {
-    const Accepted from{hit.ropeA, hit.ropeB, hit.arcA - hit.spacing, hit.arcB};
+    const double spacing = this->spacing(hit.ropeA, hit.ropeB);
+    const Accepted from{hit.ropeA, hit.ropeB, hit.arcA - spacing, hit.arcB};
     // std::lower_bound(keptByArc_, from, byArc), each halving chosen by a select instead of a branch:
     // every hit asks, and the mispredicted branches of std::lower_bound were about 4 % of the 2 m
     // pile's step (perf: 2,700 hits per substep). [first, first + length] holds the answer throughout.
@@ -729,8 +739,8 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     if (first != end && byArc(*first, from)) ++first;
     for (const Accepted* it = first; it != end; ++it) {
       const Accepted& other = *it;
-      if (other.ropeA != hit.ropeA || other.ropeB != hit.ropeB || !(other.arcA < hit.arcA + hit.spacing)) break;
-      if (std::abs(other.arcA - hit.arcA) < hit.spacing && std::abs(other.arcB - hit.arcB) < hit.spacing) return true;
+      if (other.ropeA != hit.ropeA || other.ropeB != hit.ropeB || !(other.arcA < hit.arcA + spacing)) break;
+      if (std::abs(other.arcA - hit.arcA) < spacing && std::abs(other.arcB - hit.arcB) < spacing) return true;
     }
     return false;
   };
@@ -755,7 +765,7 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
     if (nearAccepted(hit)) continue;
     if (hit.candidate < 0) {
       candidates_.push_back(pointContact(ropes[static_cast<size_t>(hit.ropeA)]->rod(),
-                                         ropes[static_cast<size_t>(hit.ropeB)]->rod(), hit));
+                                         ropes[static_cast<size_t>(hit.ropeB)]->rod(), hit, spacing(hit.ropeA, hit.ropeB)));
       hit.candidate = static_cast<int>(candidates_.size()) - 1;
       hit.gap = candidates_.back().distance;
       waiting_.push_back(index);

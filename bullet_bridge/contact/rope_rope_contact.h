@@ -133,10 +133,14 @@ class RopeRopeContacts {
     double gap;         // m, < 0 overlapping: on the curve once evaluated (candidate >= 0), else a lower bound
     double sA, sB;
     double arcA, arcB;  // rest arclength of sA, sB, m
-    double spacing;     // m of rest length: closer hits are the same contact
     int ropeA, ropeB;
     int candidate;      // its point contact in candidates_ once evaluated (two ropes: at once), else -1
+    int spanA, spanB;   // knot spans of the capsules' starts: hints for sA's and sB's span searches
   };
+  // m of rest length: hits of two ropes closer than this are the same contact (the radii's sum).
+  double spacing(int ropeA, int ropeB) const {
+    return facts_[static_cast<std::size_t>(ropeA)].radius + facts_[static_cast<std::size_t>(ropeB)].radius;
+  }
   std::vector<Hit> hits_;
   std::vector<KeyedIndex> order_;  // the hits to thin (gap, index into hits_), by (gap, ropeA, sA, ropeB, sB)
   std::vector<KeyedIndex> orderScratch_;
@@ -169,6 +173,7 @@ class RopeRopeContacts {
     double speed;            // m/s: the faster of the capsule's ends before the step
   };
   std::vector<std::vector<AxisBox>> boxes_;  // per rope: the box of each capsule's axis
+  std::vector<std::vector<int>> capsuleSpans_;  // per rope: the knot span of each capsule's start
   // What the pair tests read of each rope, once per substep.
   struct RopeFacts {
     double radius;     // m
@@ -195,7 +200,8 @@ class RopeRopeContacts {
                                   double centres, const Vec3& normal);
   // The point contact of a hit, on the curves at the ropes' state before the step; centresOut (if
   // given): the distance of the curve points, m.
-  static Candidate pointContact(const Rod& rodA, const Rod& rodB, const Hit& hit, double* centresOut = nullptr);
+  static Candidate pointContact(const Rod& rodA, const Rod& rodB, const Hit& hit, double spacing,
+                                double* centresOut = nullptr);
   void addTouchingStretch(const std::vector<RopeObject*>& ropes, const RopeCapsulePair& pair, double closestS,
                           double closestT, double closestDistance, const Vec3& normal, double centres, int candidate);
   void sampleDistributedContacts(const std::vector<RopeObject*>& ropes);

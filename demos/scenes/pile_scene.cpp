@@ -7,6 +7,7 @@
 #include "demos/scenes/knot_scene.h"
 #include "rope/common/error.h"
 #include "rope/spline/arc_length.h"
+#include "rope/spline/bspline_curve.h"
 #include "rope/spline/curve_interpolation.h"
 
 namespace rope::demos {
@@ -100,9 +101,10 @@ double PileScene::heapHeight() const {
   const Rod& rod = rope_->rod();
   constexpr int kSamples = 400;
   double highest = rod.position(rod.beginParameter()).y();
+  int span = -1;  // the samples come in order: each span search starts from the last one's
   for (int i = 1; i <= kSamples; ++i) {
     const double s = std::min(rod.endParameter(), rod.beginParameter() + (rod.endParameter() - rod.beginParameter()) * i / kSamples);
-    highest = std::max(highest, rod.position(s).y());
+    highest = std::max(highest, curvePositionNear(rod.knots(), rod.controlPoints(), s, span).y());
   }
   return highest;
 }

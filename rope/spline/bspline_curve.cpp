@@ -43,7 +43,13 @@ void accumulate(const BasisValues& basis, const PointList& points, int order, Cu
 }  // namespace
 
 CurvePoint evaluateCurve(const KnotVector& knots, const PointList& points, double s) {
-  const int span = knots.findSpan(s);
+  int span = -1;  // no hint: a search
+  return evaluateCurveNear(knots, points, s, span);
+}
+
+CurvePoint evaluateCurveNear(const KnotVector& knots, const PointList& points, double s, int& span) {
+  if (!knots.contains(s)) knots.findSpan(s);  // throws InvalidArgument("s") as evaluateCurve does
+  span = knots.findSpanNear(s, span);
   BasisValues basis;
   evaluateBasis(knots, span, s, kMaxBasisDerivative, basis);
   CurvePoint out;

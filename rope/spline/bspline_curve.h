@@ -22,6 +22,8 @@ struct CurvePoint {
 // They validate s (InvalidArgument "s") but assume points.size() == knots.controlPointCount().
 CurvePoint evaluateCurve(const KnotVector& knots, const PointList& points, double s);
 Vec3 curvePosition(const KnotVector& knots, const PointList& points, double s);
+// evaluateCurve(s), bitwise, with the span search started from `span` (as curvePositionNear).
+CurvePoint evaluateCurveNear(const KnotVector& knots, const PointList& points, double s, int& span);
 // curvePosition(s), bitwise, with the span search started from `span` (KnotVector::findSpanNear), which
 // is set to s's span: for a caller that asks for points in order along the curve or within one span.
 Vec3 curvePositionNear(const KnotVector& knots, const PointList& points, double s, int& span);

@@ -126,7 +126,7 @@ TEST(BSplineCurve, FreeFunctionsMatchTheClass) {
 
 // curvePositionNear is curvePosition bit for bit from any span hint, and leaves the hint at s's
 // span; it rejects what curvePosition rejects.
-TEST(BSplineCurve, PositionNearAHintIsThePosition) {
+TEST(BSplineCurve, PositionAndEvaluationNearAHintAreThoseWithoutOne) {
   std::mt19937 rng(26);
   for (int trial = 0; trial < 60; ++trial) {
     const int degree = 1 + trial % kMaxDegree;
@@ -137,6 +137,13 @@ TEST(BSplineCurve, PositionNearAHintIsThePosition) {
         int span = start;
         ASSERT_EQ(curvePositionNear(curve.knots(), curve.controlPoints(), s, span), curve.position(s));
         ASSERT_EQ(span, curve.knots().findSpan(s));
+        span = start;
+        const CurvePoint near = evaluateCurveNear(curve.knots(), curve.controlPoints(), s, span);
+        const CurvePoint searched = curve.evaluate(s);
+        ASSERT_EQ(near.position, searched.position);
+        ASSERT_EQ(near.firstDerivative, searched.firstDerivative);
+        ASSERT_EQ(near.secondDerivative, searched.secondDerivative);
+        ASSERT_EQ(span, curve.knots().findSpan(s));
       }
     }
   }
@@ -144,6 +151,8 @@ TEST(BSplineCurve, PositionNearAHintIsThePosition) {
   int span = 3;
   expectInvalid([&] { curvePositionNear(curve.knots(), curve.controlPoints(), 6.5, span); }, "s", "6.5");
   expectInvalid([&] { curvePositionNear(curve.knots(), curve.controlPoints(), std::nan(""), span); }, "s", "nan");
+  expectInvalid([&] { evaluateCurveNear(curve.knots(), curve.controlPoints(), 2.5, span); }, "s", "2.5");
+  expectInvalid([&] { evaluateCurveNear(curve.knots(), curve.controlPoints(), std::nan(""), span); }, "s", "nan");
   EXPECT_EQ(span, 3);
 }
 

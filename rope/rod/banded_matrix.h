@@ -93,6 +93,7 @@ class SymmetricBandedMatrix {
   int bandwidth_ = 0;
   bool factorized_ = false;
   std::vector<double> band_;  // row-major, w + 1 entries per row: columns row - w .. row
+  std::vector<double> inverseDiagonal_;  // 1 / L(c, c), once factorized: the substitutions multiply by it
   std::vector<double> column_;  // factorize()'s scratch: the current column of L below the diagonal
 };
 

@@ -61,7 +61,6 @@ int CoupledSolve::pointIndex(int rod, double s) {
   Point& point = points_[static_cast<size_t>(pointCount_)];
   point.rod = rod;
   point.s = s;
-  point.hasResponse = false;
   const KnotVector& knots = rods_[static_cast<size_t>(rod)]->knots();
   const int k = knots.findSpan(s);
   BasisValues basis;
@@ -79,20 +78,25 @@ Vec3 CoupledSolve::pointValue(const Point& point, const PointList& field) {
   return value;
 }
 
-void CoupledSolve::ensureResponse(int p) {
-  Point& point = points_[static_cast<size_t>(p)];
-  if (point.hasResponse) return;
-  point.hasResponse = true;
-  const Rod& owner = *rods_[static_cast<size_t>(point.rod)];
-  const int n3 = 3 * owner.controlPointCount();
-  point.response.resize(static_cast<size_t>(3 * n3));
-  owner.trialImpulseResponsesOnward(point.s, point.response.data());
+void CoupledSolve::ensureResponse(Side& side) {
+  if (side.hasResponse) return;
+  side.hasResponse = true;
+  const Rod& owner = *rods_[static_cast<size_t>(side.rod)];
+  side.response.resize(static_cast<size_t>(9 * owner.controlPointCount()));
+  double s[2];
+  for (int j = 0; j < side.count; ++j) s[j] = points_[static_cast<size_t>(side.points[j])].s;
+  owner.trialImpulseResponsesOnward(s, side.weights, side.count, side.response.data());
 }
 
 Eigen::Matrix3d CoupledSolve::zBlock(size_t k, size_t l) {
-  // Z = J P J^T, block (k, l) = Y(a_k, a_l) - Y(a_k, b_l) - Y(b_k, a_l) + Y(b_k, b_l).
-  return crossResponse(pointA_[k], pointA_[l]) - crossResponse(pointA_[k], pointB_[l]) -
-         crossResponse(pointB_[k], pointA_[l]) + crossResponse(pointB_[k], pointB_[l]);
+  // Z = J P J^T, block (k, l) = sum over the rods both couplings touch of J_k P J_l^T there.
+  Eigen::Matrix3d z = Eigen::Matrix3d::Zero();
+  for (size_t x = 2 * k; x < 2 * k + 2; ++x) {
+    for (size_t y = 2 * l; y < 2 * l + 2; ++y) {
+      if (sides_[x].rod >= 0 && sides_[x].rod == sides_[y].rod) z += sideResponse(sides_[x], sides_[y]);
+    }
+  }
+  return z;
 }
 
 const Eigen::Matrix3d& CoupledSolve::zBlockCached(size_t k, size_t l) {
@@ -116,29 +120,27 @@ const Eigen::Matrix3d& CoupledSolve::zBlockCached(size_t k, size_t l) {
   return zCache_[at];
 }
 
-Eigen::Matrix3d CoupledSolve::crossResponse(int p, int q) {
-  if (points_[static_cast<size_t>(p)].rod != points_[static_cast<size_t>(q)].rod) return Eigen::Matrix3d::Zero();
-  // Y(p, q) = B_p P B_q^T = Y(q, p)^T (P is symmetric): read the response of the point whose first
-  // control point comes first, at the other's rows, which it covers (Rod::trialImpulseResponsesOnward).
-  if (points_[static_cast<size_t>(p)].first < points_[static_cast<size_t>(q)].first) {
-    return crossResponse(q, p).transpose();
-  }
-  ensureResponse(q);
-  const Point& a = points_[static_cast<size_t>(p)];
-  const Point& b = points_[static_cast<size_t>(q)];
-  Eigen::Matrix3d y = Eigen::Matrix3d::Zero();
-  const size_t n3 = b.response.size() / 3;
-  for (int column = 0; column < 3; ++column) {
-    const double* r = &b.response[static_cast<size_t>(column) * n3];
-    for (int i = 0; i < a.count; ++i) {
-      const double weight = a.basis[i];
-      const double* block = r + 3 * (a.first + i);
-      y(0, column) += weight * block[0];
-      y(1, column) += weight * block[1];
-      y(2, column) += weight * block[2];
+Eigen::Matrix3d CoupledSolve::sideResponse(Side& x, Side& y) {
+  // J_x P J_y^T = (J_y P J_x^T)^T (P is symmetric): read the response of the side whose first control
+  // point comes first, at the other's rows, which it covers (Rod::trialImpulseResponsesOnward).
+  if (x.first < y.first) return sideResponse(y, x).transpose();
+  ensureResponse(y);
+  Eigen::Matrix3d z = Eigen::Matrix3d::Zero();
+  const size_t n3 = y.response.size() / 3;
+  for (int j = 0; j < x.count; ++j) {
+    const Point& a = points_[static_cast<size_t>(x.points[j])];
+    for (int column = 0; column < 3; ++column) {
+      const double* r = &y.response[static_cast<size_t>(column) * n3];
+      for (int i = 0; i < a.count; ++i) {
+        const double weight = x.weights[j] * a.basis[i];
+        const double* block = r + 3 * (a.first + i);
+        z(0, column) += weight * block[0];
+        z(1, column) += weight * block[1];
+        z(2, column) += weight * block[2];
+      }
     }
   }
-  return y;
+  return z;
 }
 
 void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<PointCoupling>& couplings) {
@@ -168,10 +170,37 @@ void CoupledSolve::prepare(const std::vector<Rod*>& rods, const std::vector<Poin
   pointA_.resize(m);
   pointB_.resize(m);
   trialChange_.resize(m);
+  if (sides_.size() < 2 * m) sides_.resize(2 * m);  // buffers kept: no allocation in a steady state
   for (size_t k = 0; k < m; ++k) {
     const PointCoupling& c = couplings[k];
     pointA_[k] = pointIndex(c.rodA, c.sA);
     pointB_[k] = pointIndex(c.rodB, c.sB);
+    // The sides: +B(sA) on rod A and -B(sB) on rod B, one side when both are on one rod.
+    Side& sideA = sides_[2 * k];
+    Side& sideB = sides_[2 * k + 1];
+    const int firstA = points_[static_cast<size_t>(pointA_[k])].first;
+    const int firstB = points_[static_cast<size_t>(pointB_[k])].first;
+    sideA.rod = c.rodA;
+    sideA.points[0] = pointA_[k];
+    sideA.weights[0] = 1.0;
+    sideA.hasResponse = false;
+    sideB.hasResponse = false;
+    if (c.rodA == c.rodB) {
+      sideA.points[1] = pointB_[k];
+      sideA.weights[1] = -1.0;
+      sideA.count = 2;
+      sideA.first = std::min(firstA, firstB);
+      sideB.rod = -1;
+      sideB.count = 0;
+    } else {
+      sideA.count = 1;
+      sideA.first = firstA;
+      sideB.rod = c.rodB;
+      sideB.points[0] = pointB_[k];
+      sideB.weights[0] = -1.0;
+      sideB.count = 1;
+      sideB.first = firstB;
+    }
     const Rod& a = *rods[static_cast<size_t>(c.rodA)];
     const Rod& b = *rods[static_cast<size_t>(c.rodB)];
     const Point& pa = points_[static_cast<size_t>(pointA_[k])];

@@ -16,14 +16,14 @@
 // (Rod::trialImpulseResponse) and Z = J P J^T (3m x 3m),
 //   (I + W Z) p = e - W J dv_trial,   dv = dv_trial + P J^T p.
 // The small system is solved in its symmetric positive definite form (Cholesky; see
-// solveImpulses). Only the couplings that act (a non-zero law) enter the dense solve, and only their points need
-// responses, computed when a coupling first acts: a candidate with a zero law has p = 0 exactly, yet
-// relativeChange() still predicts its motion (so an active set can switch it on). Cost: 3 O(n) solves
-// per acting coupling point (each only over the rows from its point on: Z's blocks read a response
-// at the later of two points, P being symmetric), one O(n) solve per rod for dv, O(m a) for the
-// predictions and O(a^3) for the dense solve (a acting couplings out of m); the rods' band and factor
-// are untouched. Exactly momentum-conserving: the
-// impulses are equal and opposite by construction.
+// solveImpulses). Only the couplings that act (a non-zero law) enter the dense solve, and only they
+// need responses, computed when a coupling first acts: a candidate with a zero law has p = 0 exactly,
+// yet relativeChange() still predicts its motion (so an active set can switch it on). Cost: 3 O(n)
+// solves per acting coupling and rod it touches, P (B_a - B_b)^T for a coupling within one rod (each
+// only over the rows from its earlier point on: Z's blocks read a response at the later of two
+// couplings, P being symmetric), one O(n) solve per rod for dv, O(m a) for the predictions and O(a^3)
+// for the dense solve (a acting couplings out of m); the rods' band and factor are untouched. Exactly
+// momentum-conserving: the impulses are equal and opposite by construction.
 
 #include <vector>
 
@@ -86,18 +86,28 @@ class CoupledSolve {
     int first;              // first control point with b_i(s) != 0
     double basis[kMaxDegree + 1];
     int count;
-    bool hasResponse;
-    // 3 columns of 3n (unit impulse along x, y, z), once needed; valid on the rows from the point's
-    // own first control point on (Rod::trialImpulseResponsesOnward)
+  };
+  // A coupling's part on one rod: the combination sum_j weight_j B(s_j) of its points there (one
+  // point, or both with +1 and -1 where the coupling ties two places of one rod) and the rod's
+  // response to it, P (sum_j weight_j B(s_j))^T: 3 columns of 3n, once needed, valid on the rows from
+  // `first` on (Rod::trialImpulseResponsesOnward). One solve per coupling and rod where there was one
+  // per point: a self-contact's solve runs from the earlier point on, and the later point's is saved.
+  struct Side {
+    int rod = -1;  // -1: unused (the second side of a coupling within one rod)
+    int first = 0;  // the first control point any of its points touches
+    int points[2] = {-1, -1};  // into points_
+    double weights[2] = {0.0, 0.0};
+    int count = 0;
+    bool hasResponse = false;
     std::vector<double> response;
   };
   int pointIndex(int rod, double s);
   size_t pointSlot(int rod, double s) const;  // pointTable_'s slot of (rod, s): its point or empty
   static Vec3 pointValue(const Point& point, const PointList& field);  // sum_i b_i(s) field_i
-  void ensureResponse(int p);
-  // Y(p, q) = B_p P B_q^T (zero for different rods), from the response of whichever point's first
+  void ensureResponse(Side& side);
+  // Y(x, y) = J_x P J_y^T for two sides on one rod, from the response of whichever side's first
   // control point comes first (computed on demand).
-  Eigen::Matrix3d crossResponse(int p, int q);
+  Eigen::Matrix3d sideResponse(Side& x, Side& y);
   Eigen::Matrix3d zBlock(size_t k, size_t l);  // block (k, l) of Z
   // zBlock(k, l), computed once per prepare(): an active-set loop asks for the same blocks in every
   // pass (relativeChange of each candidate against each acting coupling was 16 % of the 2 m pile's
@@ -110,6 +120,7 @@ class CoupledSolve {
   int pointCount_ = 0;
   std::vector<int> pointTable_;  // open addressing by (rod, s): index into points_, -1 empty
   std::vector<int> pointA_, pointB_;  // per coupling
+  std::vector<Side> sides_;  // per coupling k: sides_[2k] and sides_[2k + 1]; buffers kept between prepares
   std::vector<Vec3> trialChange_;
   // The cache of zBlockCached, one column of m blocks per coupling l that has been asked for (those
   // that acted): zColumn_[l] is its column, -1 none yet. Buffers only grow (no allocation in a

@@ -586,25 +586,54 @@ void Rod::trialImpulseResponse(double s, const Vec3& direction, double* response
   const_cast<ConstrainedSolver&>(solver_).solveHomogeneous(step_.system, response, 3 * first);
 }
 
-void Rod::trialImpulseResponses(double s, double* responses) const { impulseResponses(s, responses, false); }
+void Rod::trialImpulseResponses(double s, double* responses) const {
+  const double weight = 1.0;
+  impulseResponses(&s, &weight, 1, responses, false);
+}
 
-void Rod::trialImpulseResponsesOnward(double s, double* responses) const { impulseResponses(s, responses, true); }
+void Rod::trialImpulseResponsesOnward(double s, double* responses) const {
+  const double weight = 1.0;
+  impulseResponses(&s, &weight, 1, responses, true);
+}
 
-void Rod::impulseResponses(double s, double* responses, bool onward) const {
-  validateParameter(s);
+void Rod::trialImpulseResponsesOnward(const double* s, const double* weights, int count, double* responses) const {
+  if (count < 1 || count > kMaxResponsePoints) {
+    throw InvalidArgument("count", std::to_string(count), "must be in 1.." + std::to_string(kMaxResponsePoints));
+  }
+  for (int j = 0; j < count; ++j) {
+    if (knots_.contains(s[j]) && std::isfinite(weights[j])) continue;
+    // The names are built only for the error (this runs for every coupling that acts).
+    const std::string index = "[" + std::to_string(j) + "]";
+    if (!knots_.contains(s[j])) {
+      requireFinite("s" + index, s[j]);
+      throw InvalidArgument("s" + index, formatValue(s[j]),
+                            "must be in [" + formatValue(beginParameter()) + ", " + formatValue(endParameter()) + "]");
+    }
+    requireFinite("weights" + index, weights[j]);
+  }
+  impulseResponses(s, weights, count, responses, true);
+}
+
+void Rod::impulseResponses(const double* s, const double* weights, int count, double* responses, bool onward) const {
+  for (int j = 0; j < count; ++j) validateParameter(s[j]);
   if (!trialValid_ || !solver_.ready()) {
     throw InvalidArgument("trial", "none", "solveTrial() must have succeeded on this rod since the last change");
   }
   const int n3 = 3 * controlPointCount();
   const int d = degree();
-  BasisValues basis;
-  const int first = basisAt(knots_, s, basis);
+  BasisValues basis[kMaxResponsePoints];
+  int firsts[kMaxResponsePoints];
+  int first = controlPointCount();
+  for (int j = 0; j < count; ++j) {
+    firsts[j] = basisAt(knots_, s[j], basis[j]);
+    first = std::min(first, firsts[j]);
+  }
   std::fill(responses, responses + 3 * n3, 0.0);
   for (int axis = 0; axis < 3; ++axis) {
-    const Vec3 direction = Vec3::Unit(axis);
     double* response = responses + axis * n3;
-    for (int a = 0; a <= d; ++a)
-      for (int c = 0; c < 3; ++c) response[3 * (first + a) + c] = basis.d[0][static_cast<size_t>(a)] * direction[c];
+    for (int j = 0; j < count; ++j) {
+      for (int a = 0; a <= d; ++a) response[3 * (firsts[j] + a) + axis] += weights[j] * basis[j].d[0][static_cast<size_t>(a)];
+    }
   }
   // The scratch solver is logically const here: it only reuses the trial's Schur factor.
   const_cast<ConstrainedSolver&>(solver_).solveHomogeneous3(step_.system, responses, 3 * first, onward ? 3 * first : 0);

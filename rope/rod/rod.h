@@ -273,6 +273,12 @@ class Rod {
   // 3n of each column); the rows before them are left unspecified. Enough to read the response at
   // any curve point whose first control point is not before s's (CoupledSolve), for less work.
   void trialImpulseResponsesOnward(double s, double* responses) const;
+  // The same for one impulse shared out over several curve points: weights[j] times it at C(s[j]),
+  // j < count (e.g. +1 and -1 at a coupling's two points on this rod: one solve where two were, from
+  // the first control point of any of them on). With count 1 and weight 1 bitwise the single-point
+  // call. Throws InvalidArgument "count" outside [1, kMaxResponsePoints], "s[j]" or "weights[j]".
+  static constexpr int kMaxResponsePoints = 8;
+  void trialImpulseResponsesOnward(const double* s, const double* weights, int count, double* responses) const;
   // In place: generalised impulses on the control points (3n doubles, N s, x y z per point; e.g. sums
   // of impulses at curve points times their basis values) -> the change of the trial's control-point
   // velocities they would cause, pins held. One O(n) solve for any number of impulses: a matrix-free
@@ -409,8 +415,8 @@ class Rod {
   // the point masses, with the products and blocks the step's bookkeeping reads (step_.internalForce
   // and the rest).
   void assembleState(double h, const PointList* about);
-  // trialImpulseResponses (onward: trialImpulseResponsesOnward).
-  void impulseResponses(double s, double* responses, bool onward) const;
+  // trialImpulseResponses (onward: trialImpulseResponsesOnward), for weights[j] at s[j], j < count.
+  void impulseResponses(const double* s, const double* weights, int count, double* responses, bool onward) const;
   // The stretching energy the last pass's trial holds beyond the quadratic model it was solved with,
   // J (rod.cpp); and whether it is large enough to solve the step again about the trial.
   double linearisationExcess() const;

@@ -74,8 +74,9 @@ TEST(SymmetricBandedMatrix, SolveMatchesDense) {
 
 TEST(SymmetricBandedMatrix, FactorIsBitwiseTheTextbookRowByRowOne) {
   // factorize() updates the trailing band column by column; every entry must still receive its terms
-  // in the order of L(r, c) = (A(r, c) - sum_{k ascending} L(r, k) L(c, k)) / L(c, c), so that the
-  // rounding (and every golden hash built on it) is that of the textbook form.
+  // in the order of L(r, c) = (A(r, c) - sum_{k ascending} L(r, k) L(c, k)) * (1 / L(c, c)), so that
+  // the rounding (and every golden hash built on it) is that of the textbook form, with the pivot's
+  // reciprocal taken once per column.
   for (int blockSize : {1, 3}) {
     SymmetricBandedMatrix banded;
     const Eigen::MatrixXd dense = randomBanded(19, blockSize, 3, 21u + static_cast<unsigned>(blockSize), banded);
@@ -86,7 +87,7 @@ TEST(SymmetricBandedMatrix, FactorIsBitwiseTheTextbookRowByRowOne) {
       for (int c = std::max(0, r - w); c <= r; ++c) {
         double sum = dense(r, c);
         for (int k = std::max(0, r - w); k < c; ++k) sum -= lower(r, k) * lower(c, k);
-        lower(r, c) = c < r ? sum / lower(c, c) : std::sqrt(sum);
+        lower(r, c) = c < r ? sum * (1.0 / lower(c, c)) : std::sqrt(sum);
       }
     }
     ASSERT_TRUE(banded.factorize());

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -260,6 +261,55 @@ TEST(CoupledSolve, OnwardResponsesAreTheFullOnesFromThePointOn) {
         }
       }
     }
+  }
+}
+
+// One impulse shared out over several points: with one point of weight 1 the single-point response
+// bit for bit; with two (a coupling within one rod: +1 and -1.5 here) the weighted sum of theirs to
+// round-off, on the rows from the earlier point's first control point on. Bad input names the field.
+TEST(CoupledSolve, SharedImpulseResponsesAreTheWeightedSinglePointOnes) {
+  TwoRods setup;
+  for (Rod* rod : {&setup.a, &setup.b}) {
+    ASSERT_TRUE(rod->solveTrial(TwoRods::kStep).ok);
+    const size_t n3 = static_cast<size_t>(3 * rod->controlPointCount());
+    const double s[2] = {0.21 * rod->endParameter(), 0.74 * rod->endParameter()};
+    const double one = 1.0, weights[2] = {1.0, -1.5};
+    std::vector<double> single(3 * n3), shared(3 * n3), later(3 * n3);
+    rod->trialImpulseResponsesOnward(s[0], single.data());
+    rod->trialImpulseResponsesOnward(&s[0], &one, 1, shared.data());
+    const size_t first = static_cast<size_t>(3 * (rod->knots().findSpan(s[0]) - rod->degree()));
+    for (size_t axis = 0; axis < 3; ++axis) {
+      for (size_t i = first; i < n3; ++i) {
+        ASSERT_EQ(std::memcmp(&single[axis * n3 + i], &shared[axis * n3 + i], sizeof(double)), 0) << axis << ", " << i;
+      }
+    }
+    rod->trialImpulseResponses(s[1], later.data());
+    rod->trialImpulseResponsesOnward(s, weights, 2, shared.data());
+    double scale = 0.0;
+    for (const double x : single) scale = std::max(scale, std::abs(x));
+    for (size_t axis = 0; axis < 3; ++axis) {
+      for (size_t i = first; i < n3; ++i) {
+        const double expected = weights[0] * single[axis * n3 + i] + weights[1] * later[axis * n3 + i];
+        ASSERT_NEAR(shared[axis * n3 + i], expected, 1e-12 * scale) << axis << ", " << i;
+      }
+    }
+    const auto expectField = [&](const char* field, const double* points, const double* w, int count) {
+      try {
+        rod->trialImpulseResponsesOnward(points, w, count, shared.data());
+        ADD_FAILURE() << field << " accepted";
+      } catch (const InvalidArgument& e) {
+        EXPECT_EQ(e.parameter(), field) << e.what();
+      }
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double offRod[2] = {s[0], rod->endParameter() + 1.0}, notANumber[2] = {s[0], nan};
+    const double infinite[2] = {std::numeric_limits<double>::infinity(), 1.0};
+    expectField("count", s, weights, 0);
+    expectField("count", s, weights, Rod::kMaxResponsePoints + 1);
+    expectField("s[1]", offRod, weights, 2);
+    expectField("s[1]", notANumber, weights, 2);
+    expectField("weights[0]", s, infinite, 2);
+    EXPECT_TRUE(rod->hasTrial());
   }
 }
 

@@ -105,6 +105,9 @@ struct ContactReport {
   double ropeContactSeconds = 0.0;  // rope-rope narrowphase and coupled solve, s (profiling)
   const char* ropeContactFailure = "";  // non-empty: the rope-rope solve failed this substep (static text)
   double pairScanSeconds = 0.0;  // midphase: the dispatched rope pairs and the ropes' trees, s (profiling)
+  // The rope-rope and self-contact detection ran on the RopeWorld's side thread, beside the ropes'
+  // body contacts and trials (RopeWorld::setParallelContactDetection); the results are the same.
+  bool detectedOnSideThread = false;
   double maxPenetration() const;  // over all ropes, m
   double maxSelfOverlap() const;  // over all rope-rope and self-contacts, m
 };

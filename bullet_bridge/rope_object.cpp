@@ -353,6 +353,11 @@ void RopeObject::queueTrialLoads() {
 }
 
 void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candidates, double h) {
+  prepareSubstep(h);
+  solveSubstepTrial(candidates, h);
+}
+
+void RopeObject::prepareSubstep(double h) {
   requirePositive("h", h);
   runWinches(h);  // winch.h: the ends move before anything reads the rope
   if (settings_.fluidDensity > 0.0) {
@@ -368,15 +373,19 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
   // Rope-rope contact corrects the trial after the body contacts' passes, which would spoil friction
   // bounds made exact before it: a rope that touched ropes last substep keeps the pass-by-pass ones.
   bodyContacts_.setExactBounds(lastStep_.ropeContacts == 0);
-  const bool nearRopes = nearRopes_;
+  nearRopesBefore_ = nearRopes_;
   nearRopes_ = false;
   contacts_.clear();
   pending_.clear();
   lastStep_ = RopeStepRecord();
   lastStep_.rope = this;
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
+  substepStart_ = std::chrono::steady_clock::now();
   proxies_->rebuild(rod_);
+}
+
+void RopeObject::solveSubstepTrial(const std::vector<const btCollisionObject*>& candidates, double h) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = substepStart_;
   bodyContacts_.gather(
       rod_, *proxies_, candidates, settings_,
       [this](const btCollisionObject& object, double s0, double s1) { return attachedNear(object, s0, s1); },
@@ -386,7 +395,7 @@ void RopeObject::beginSubstep(const std::vector<const btCollisionObject*>& candi
   // rope-rope candidates, is a backward-Euler step (Rod::restartTimeIntegration); free and attached
   // stretches of motion keep the rod's second-order BDF2. Knot removal there is judged by the shape
   // (RemovalCriterion::kMechanicalOutOfContact): contact jitter is far above the mechanical floors.
-  if (!contacts_.empty() || nearRopes) {
+  if (!contacts_.empty() || nearRopesBefore_) {
     rod_.restartTimeIntegration();
     rod_.markContact();
   }

@@ -18,6 +18,7 @@
 
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -206,6 +207,13 @@ class RopeObject {
   // (CapsuleProxies::updateBoxesDeferred): the RopeWorld hands the boxes over in world order.
   void finishSubstep(double h);
   void announceBox();
+  // beginSubstep in two halves, so that the RopeWorld can find rope-rope contacts between them, on
+  // another thread (rope_world.cpp): prepareSubstep runs the winches, queues the loads and rebuilds
+  // the capsules (after it, the capsules and the rod's state before the step are what rope-rope
+  // contact reads, and solveSubstepTrial changes neither); solveSubstepTrial finds the body
+  // contacts and solves the trial.
+  void prepareSubstep(double h);
+  void solveSubstepTrial(const std::vector<const btCollisionObject*>& candidates, double h);
   // Whether finishing this substep (endSubstep) acts on nothing but this rope: no attachment spring
   // and no contact sample gives a dynamic body an impulse. Such a rope's substep can be finished
   // before the other ropes' begin without changing what they see.
@@ -313,6 +321,8 @@ class RopeObject {
   const std::vector<std::pair<const btRigidBody*, int>>* bodyAttachmentCounts_ = nullptr;
   int attachmentsOn(const btRigidBody* body) const;
   bool nearRopes_ = false;  // rope-rope candidates last substep: the next one restarts BDF2
+  bool nearRopesBefore_ = false;  // nearRopes_ as prepareSubstep found it, for solveSubstepTrial
+  std::chrono::steady_clock::time_point substepStart_;  // prepareSubstep's rebuild began (contactSeconds)
   std::vector<PendingSpring> pending_;
   Rod::LoadQueue userLoads_;  // what the user queued on the rod for this substep
   BodyContacts bodyContacts_;

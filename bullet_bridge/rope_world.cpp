@@ -10,12 +10,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <thread>
 #include <tuple>
 
 #include "bullet_bridge/detail/body_state.h"
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/detail/guarded_call.h"
 #include "bullet_bridge/detail/self_pair_cache.h"
+#include "bullet_bridge/detail/side_thread.h"
 #include "bullet_bridge/detail/tree_pairs.h"
 #include "bullet_bridge/kinematic_rope.h"
 #include "bullet_bridge/rope_debug_draw.h"
@@ -87,7 +89,9 @@ RopeWorld::RopeWorld(btDiscreteDynamicsWorld& world)
     : world_(world),
       dispatch_(std::make_unique<RopeDispatch>(world)),
       action_(std::make_unique<Action>(*this)),
-      selfWalk_(std::make_unique<SelfWalk>()) {
+      selfWalk_(std::make_unique<SelfWalk>()),
+      parallelContactDetection_(std::thread::hardware_concurrency() > 1),
+      side_(std::make_unique<SideThread>()) {
   world_.addAction(action_.get());
 }
 
@@ -201,83 +205,17 @@ void RopeWorld::substep(double h) {
     }
   }
   bodyAttachmentCounts_.resize(unique);
-  // Each rope is taken through as much of its substep as it can in one visit, while its data is in
-  // the cache: a separate pass over all ropes per phase (self-contact trees, begin, rope-contact
-  // bookkeeping, end) fetched every rope's data from memory again each time once the ropes outgrew
-  // the caches (1000 ropes resting on a box cost 1.56 times as much per rope as 100). A rope that no
-  // rope-rope or self-contact pair names and whose end of substep pushes no dynamic body
-  // (RopeObject::finishesAlone) is finished at once: nothing it does then can reach another rope
-  // before that rope's own end of substep (the coupled rope-rope solve takes only the ropes its pairs
-  // name), so the results are the same as finishing it after every rope has begun. The new boxes
-  // reach Bullet's broadphase in world order after all ropes are done, as before.
   ropeStages_.assign(ropes_.size(), RopeStage::kRested);
   for (const RopeCapsulePair& pair : capsulePairs_) {
     ropeStages_[static_cast<std::size_t>(pair.ropeA)] = RopeStage::kPaired;
     ropeStages_[static_cast<std::size_t>(pair.ropeB)] = RopeStage::kPaired;
   }
-  for (std::size_t r = 0; r < ropes_.size(); ++r) {
-    RopeObject& rope = *ropes_[r];
-    // The ropes' states outgrow the caches (1000 ropes: ~20 MB touched per substep), so each rope's
-    // first reads waited for memory: ask for the next ropes' data in stages (RopeObject::
-    // prefetchObject) while this one is stepped (rope/common/prefetch.h).
-    if (r + 3 < ropes_.size()) ropes_[r + 3]->prefetchObject();
-    if (r + 2 < ropes_.size()) ropes_[r + 2]->prefetchParts();
-    if (r + 1 < ropes_.size()) {
-      ropes_[r + 1]->prefetchState();
-      prefetchVector(candidates_[r + 1]);
-    }
-    // Bodies removed from the world (perhaps deleted) since the last substep lose their attachments
-    // before anything reads them.
-    rope.dropDepartedAttachments(world_);
-    std::vector<const btCollisionObject*>& list = candidates_[r];
-    // Deterministic order (pointer values are not): by the body's index in the world.
-    std::sort(list.begin(), list.end(), [](const btCollisionObject* a, const btCollisionObject* b) {
-      return a->getWorldArrayIndex() < b->getWorldArrayIndex();
-    });
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    if (rope.settings().gravitySource == BulletRopeSettings::GravitySource::kWorld) {
-      const btVector3 g = world_.getGravity() * static_cast<btScalar>(rope.settings().gravityScale);
-      const Vec3 gravity(static_cast<double>(g.x()), static_cast<double>(g.y()), static_cast<double>(g.z()));
-      // A non-finite world gravity leaves the rope's as it was (no arithmetic on it: FP traps).
-      if (std::isfinite(gravity.x()) && std::isfinite(gravity.y()) && std::isfinite(gravity.z())) {
-        rope.rod().setGravity(gravity);
-      }
-    }
-    const bool resting = rope.resting();
-    if (resting) {
-      guardedCall([&] { rope.restSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
-    } else {
-      // A trial left pending by a failure keeps the rope's own storage (RopeObject::swapStepScratch).
-      if (!rope.rod().hasTrial()) rope.swapStepScratch(stepScratch_);
-      guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
-    }
-    // Self-contact candidates: capsule pairs whose tree leaves (swept boxes) overlap. The tree is the
-    // one the rope-rope pairs were found in (it is refitted only at the end of the substep; a winch
-    // that changed the capsule count in the rope's begin added or dropped leaves), and the pairs are
-    // sorted before the solve, so finding them here changes nothing but where the time goes. After
-    // the rope's begin (winches, rebuild): the walk skips what the solve's filter would drop by the
-    // capsules' rest arclengths (collideTrees), and those are the ones the solve reads. Guarded as the
-    // begin is: those arclengths are evaluated on the rod, and nothing may throw out of a step.
-    bool selfPaired = false;
-    guardedCall([&] { selfPaired = collideSelf(rope, h); }, [&](const char* message) { rope.failSubstep(message); });
-    if (selfPaired) ropeStages_[r] = RopeStage::kPaired;
-    const bool paired = ropeStages_[r] == RopeStage::kPaired;
-    if (resting) {
-      if (!paired) ropeStages_[r] = RopeStage::kRested;
-    } else {
-      if (!paired && rope.finishesAlone()) {
-        guardedCall([&] { rope.finishSubstep(h); }, [&](const char* message) { rope.failSubstep(message); });
-        ropeStages_[r] = RopeStage::kFinished;
-        if (!rope.rod().hasTrial()) rope.swapStepScratch(stepScratch_);
-      } else if (!paired) {
-        ropeStages_[r] = RopeStage::kBegun;
-      }
-    }
-    // No pair names the rope: no rope-rope contact record can (solveRopeContacts records the others).
-    if (!paired) rope.recordRopeContacts(0, 0.0, false);
+  if (detectBeside()) {
+    stepRopesWithSideDetection(h);
+  } else {
+    stepRopesInTurn(h);
+    solveRopeContacts(h);
   }
-
-  solveRopeContacts(h);
 
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     RopeObject* rope = ropes_[r];
@@ -305,6 +243,175 @@ void RopeWorld::substep(double h) {
   runCallback();
 }
 
+void RopeWorld::readyRope(std::size_t r) {
+  RopeObject& rope = *ropes_[r];
+  // Bodies removed from the world (perhaps deleted) since the last substep lose their attachments
+  // before anything reads them.
+  rope.dropDepartedAttachments(world_);
+  std::vector<const btCollisionObject*>& list = candidates_[r];
+  // Deterministic order (pointer values are not): by the body's index in the world.
+  std::sort(list.begin(), list.end(), [](const btCollisionObject* a, const btCollisionObject* b) {
+    return a->getWorldArrayIndex() < b->getWorldArrayIndex();
+  });
+  list.erase(std::unique(list.begin(), list.end()), list.end());
+  if (rope.settings().gravitySource == BulletRopeSettings::GravitySource::kWorld) {
+    const btVector3 g = world_.getGravity() * static_cast<btScalar>(rope.settings().gravityScale);
+    const Vec3 gravity(static_cast<double>(g.x()), static_cast<double>(g.y()), static_cast<double>(g.z()));
+    // A non-finite world gravity leaves the rope's as it was (no arithmetic on it: FP traps).
+    if (std::isfinite(gravity.x()) && std::isfinite(gravity.y()) && std::isfinite(gravity.z())) {
+      rope.rod().setGravity(gravity);
+    }
+  }
+}
+
+void RopeWorld::settleStage(std::size_t r, bool resting, bool selfPaired, double h) {
+  RopeObject& rope = *ropes_[r];
+  if (selfPaired) ropeStages_[r] = RopeStage::kPaired;
+  const bool paired = ropeStages_[r] == RopeStage::kPaired;
+  if (resting) {
+    if (!paired) ropeStages_[r] = RopeStage::kRested;
+  } else {
+    if (!paired && rope.finishesAlone()) {
+      guardedCall([&] { rope.finishSubstep(h); }, [&](const char* message) { rope.failSubstep(message); });
+      ropeStages_[r] = RopeStage::kFinished;
+      if (!rope.rod().hasTrial()) rope.swapStepScratch(stepScratch_);
+    } else if (!paired) {
+      ropeStages_[r] = RopeStage::kBegun;
+    }
+  }
+  // No pair names the rope: no rope-rope contact record can (solveRopeContacts records the others).
+  if (!paired) rope.recordRopeContacts(0, 0.0, false);
+}
+
+void RopeWorld::stepRopesInTurn(double h) {
+  // Each rope is taken through as much of its substep as it can in one visit, while its data is in
+  // the cache: a separate pass over all ropes per phase (self-contact trees, begin, rope-contact
+  // bookkeeping, end) fetched every rope's data from memory again each time once the ropes outgrew
+  // the caches (1000 ropes resting on a box cost 1.56 times as much per rope as 100). A rope that no
+  // rope-rope or self-contact pair names and whose end of substep pushes no dynamic body
+  // (RopeObject::finishesAlone) is finished at once: nothing it does then can reach another rope
+  // before that rope's own end of substep (the coupled rope-rope solve takes only the ropes its pairs
+  // name), so the results are the same as finishing it after every rope has begun. The new boxes
+  // reach Bullet's broadphase in world order after all ropes are done, as before.
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    RopeObject& rope = *ropes_[r];
+    // The ropes' states outgrow the caches (1000 ropes: ~20 MB touched per substep), so each rope's
+    // first reads waited for memory: ask for the next ropes' data in stages (RopeObject::
+    // prefetchObject) while this one is stepped (rope/common/prefetch.h).
+    if (r + 3 < ropes_.size()) ropes_[r + 3]->prefetchObject();
+    if (r + 2 < ropes_.size()) ropes_[r + 2]->prefetchParts();
+    if (r + 1 < ropes_.size()) {
+      ropes_[r + 1]->prefetchState();
+      prefetchVector(candidates_[r + 1]);
+    }
+    readyRope(r);
+    const std::vector<const btCollisionObject*>& list = candidates_[r];
+    const bool resting = rope.resting();
+    if (resting) {
+      guardedCall([&] { rope.restSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+    } else {
+      // A trial left pending by a failure keeps the rope's own storage (RopeObject::swapStepScratch).
+      if (!rope.rod().hasTrial()) rope.swapStepScratch(stepScratch_);
+      guardedCall([&] { rope.beginSubstep(list, h); }, [&](const char* message) { rope.failSubstep(message); });
+    }
+    // Self-contact candidates: capsule pairs whose tree leaves (swept boxes) overlap. The tree is the
+    // one the rope-rope pairs were found in (it is refitted only at the end of the substep; a winch
+    // that changed the capsule count in the rope's begin added or dropped leaves), and the pairs are
+    // sorted before the solve, so finding them here changes nothing but where the time goes. After
+    // the rope's begin (winches, rebuild): the walk skips what the solve's filter would drop by the
+    // capsules' rest arclengths (collideTrees), and those are the ones the solve reads. Guarded as the
+    // begin is: those arclengths are evaluated on the rod, and nothing may throw out of a step.
+    bool selfPaired = false;
+    guardedCall([&] { selfPaired = collideSelf(rope, h, report_.pairScanSeconds); },
+                [&](const char* message) { rope.failSubstep(message); });
+    settleStage(r, resting, selfPaired, h);
+  }
+}
+
+bool RopeWorld::detectBeside() const {
+  // Worth a hand-over (a few microseconds each way) only where there are pairs to test: the last
+  // substep's count predicts this one's (a rope that lies alone has none). Either way the results
+  // are the same, bit for bit.
+  return parallelContactDetection_ && lastPairCount_ >= kMinPairsBeside;
+}
+
+void RopeWorld::stepRopesWithSideDetection(double h) {
+  // The rope-rope and self-contact detection (the self-contact walks, then RopeRopeContacts::
+  // detect) reads only the ropes' capsules and their state before the step, which are settled once
+  // every rope has run RopeObject::prepareSubstep; the body contacts and trial steps
+  // (RopeObject::solveSubstepTrial) change neither. So the detection runs on the side thread while
+  // this one solves the ropes' body contacts and trials: the same work as stepRopesInTurn in another
+  // order, with the same results bit for bit (the ropes that finish alone are finished after every
+  // rope has begun, which stepRopesInTurn says changes nothing). Two passes over the ropes instead of
+  // one visit each: for the pile and the knot the time saved is the detection's share of the step.
+  side_->wake();  // while the ropes are prepared
+  const std::size_t count = ropes_.size();
+  restingAtStart_.assign(count, 0);
+  prepared_.assign(count, 0);
+  selfPaired_.assign(count, 0);
+  sideRopeFailures_.clear();
+  for (std::size_t r = 0; r < count; ++r) {
+    RopeObject& rope = *ropes_[r];
+    readyRope(r);
+    restingAtStart_[r] = rope.resting() ? 1 : 0;
+    if (rope.resting()) {
+      guardedCall([&] { rope.restSubstep(candidates_[r], h); }, [&](const char* message) { rope.failSubstep(message); });
+    } else {
+      if (!rope.rod().hasTrial()) rope.swapStepScratch(stepScratch_);
+      guardedCall([&] {
+        rope.prepareSubstep(h);
+        prepared_[r] = 1;
+      }, [&](const char* message) { rope.failSubstep(message); });
+    }
+    // The capsules' end speeds and rest arclengths are computed when first asked for and kept
+    // (CapsuleProxies): asked here, the side thread and this one only read them. A rope that fails
+    // here fails its substep, and only the side thread reads it from now on.
+    if (prepared_[r]) {
+      guardedCall([&] {
+        rope.proxies().endSpeeds(rope.rod());
+        rope.proxies().endArcs(rope.rod());
+      }, [&](const char* message) {
+        prepared_[r] = 0;
+        rope.failSubstep(message);
+      });
+    }
+  }
+  // From here until the side job ends this thread reads and writes only the prepared ropes' trials,
+  // loads, body contacts and records, and the job only the ropes' capsules and state before the
+  // step, capsulePairs_, the stages, the self-walk scratch, the rope-rope solver and the side_*
+  // members; the report waits for it.
+  struct WaitForSide {  // whatever happens below, the side job ends before this function does
+    SideThread& side;
+    ~WaitForSide() { side.wait(); }
+  } waitForSide{*side_};
+  sideStep_ = h;
+  report_.detectedOnSideThread = true;
+  side_->start([](void* world) { static_cast<RopeWorld*>(world)->detectOnSide(); }, this);
+  for (std::size_t r = 0; r < count; ++r) {
+    if (!prepared_[r]) continue;
+    RopeObject& rope = *ropes_[r];
+    guardedCall([&] { rope.solveSubstepTrial(candidates_[r], h); }, [&](const char* message) { rope.failSubstep(message); });
+  }
+  side_->wait();
+  report_.pairScanSeconds += sideScanSeconds_;
+  for (const auto& failure : sideRopeFailures_) ropes_[failure.first]->failSubstep(failure.second.c_str());
+  for (std::size_t r = 0; r < count; ++r) settleStage(r, restingAtStart_[r] != 0, selfPaired_[r] != 0, h);
+  respondToRopeContacts(h);
+}
+
+void RopeWorld::detectOnSide() {
+  const double h = sideStep_;
+  sideScanSeconds_ = 0.0;
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    guardedCall([&] { selfPaired_[r] = collideSelf(*ropes_[r], h, sideScanSeconds_) ? 1 : 0; },
+                [&](const char* message) { sideRopeFailures_.emplace_back(r, message); });
+  }
+  for (std::size_t r = 0; r < ropes_.size(); ++r) {
+    if (selfPaired_[r]) ropeStages_[r] = RopeStage::kPaired;  // as settleStage will
+  }
+  findRopeContacts(h);
+}
+
 void RopeWorld::startReport(double h) {
   report_.substep += 1;
   report_.timeStep = h;
@@ -314,6 +421,7 @@ void RopeWorld::startReport(double h) {
   report_.ropeContacts.clear();
   report_.attachments.clear();
   report_.ropeContactFailure = "";
+  report_.detectedOnSideThread = false;
 }
 
 void RopeWorld::skipSubstep(double h) {
@@ -363,14 +471,14 @@ void RopeWorld::findCandidates(double h) {
   report_.pairScanSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - scanStart).count();
 }
 
-bool RopeWorld::collideSelf(const RopeObject& rope, double h) {
+bool RopeWorld::collideSelf(const RopeObject& rope, double h, double& scanSeconds) {
   // Self-contact needs the rope's own group in its mask, as for a pair of two ropes.
   const BulletRopeSettings& settings = rope.settings();
   if (!settings.selfContact || (settings.collisionGroup & settings.collisionMask) == 0) return false;
   const auto start = std::chrono::steady_clock::now();
   const std::size_t before = capsulePairs_.size();
   findSelfPairs(rope, h);
-  report_.pairScanSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  scanSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return capsulePairs_.size() > before;
 }
 
@@ -515,15 +623,19 @@ void RopeWorld::addFastBodies(double h) {
 }
 
 void RopeWorld::solveRopeContacts(double h) {
+  findRopeContacts(h);
+  respondToRopeContacts(h);
+}
+
+void RopeWorld::findRopeContacts(double h) {
   // Rope-rope and self-contact, coupled into the trials of the ropes the pairs name (in world order,
   // renumbered: a rope no pair names has no contact to find, and its trial may be committed already);
   // pairs in a fixed order (the pair cache's order depends on pointer hashes).
-  const auto ropeStart = std::chrono::steady_clock::now();
-  if (capsulePairs_.empty()) {
-    ropeRopeContacts_.forgetAll();  // no rope near another: nothing sticks
-    report_.ropeContactSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
-    return;
-  }
+  const auto start = std::chrono::steady_clock::now();
+  detectFailure_.clear();
+  lastPairCount_ = capsulePairs_.size();
+  findSeconds_ = 0.0;
+  if (capsulePairs_.empty()) return;
   pairRopes_.clear();
   pairRopeIndex_.assign(ropes_.size(), -1);
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
@@ -542,14 +654,33 @@ void RopeWorld::solveRopeContacts(double h) {
         ropeRopeContacts_.prepare(pairRopes_, h);
         ropeRopeContacts_.dropDistantPairs(capsulePairs_);
         sortCapsulePairs();
-        const int ropeContacts = ropeRopeContacts_.solve(pairRopes_, capsulePairs_, h, report_.ropeContacts);
-        if (ropeContacts < 0) {
-          report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
-          ++warnings_.ropeContactFailures;
-          ropeRopeContacts_.forgetAll();
-        }
+        ropeRopeContacts_.detect(pairRopes_, capsulePairs_);
       },
-      [&](const char* message) { failRopeContacts(message); });
+      [&](const char* message) { detectFailure_ = message; });
+  findSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void RopeWorld::respondToRopeContacts(double h) {
+  const auto ropeStart = std::chrono::steady_clock::now();
+  if (capsulePairs_.empty()) {
+    ropeRopeContacts_.forgetAll();  // no rope near another: nothing sticks
+    report_.ropeContactSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
+    return;
+  }
+  if (!detectFailure_.empty()) {
+    failRopeContacts(detectFailure_.c_str());
+  } else {
+    guardedCall(
+        [&] {
+          const int ropeContacts = ropeRopeContacts_.respond(pairRopes_, h, report_.ropeContacts);
+          if (ropeContacts < 0) {
+            report_.ropeContactFailure = "the coupled rope-rope contact solve failed; contacts skipped";
+            ++warnings_.ropeContactFailures;
+            ropeRopeContacts_.forgetAll();
+          }
+        },
+        [&](const char* message) { failRopeContacts(message); });
+  }
   // Each paired rope's records, in one pass over the records.
   pairRopeContacts_.assign(pairRopes_.size(), PairRopeContacts{});
   const auto count = [&](const RopeObject& rope, const RopePairContactRecord& record) {
@@ -568,7 +699,8 @@ void RopeWorld::solveRopeContacts(double h) {
     const PairRopeContacts& counts = pairRopeContacts_[k];
     pairRopes_[k]->recordRopeContacts(counts.active, counts.overlap, counts.near > 0);
   }
-  report_.ropeContactSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
+  report_.ropeContactSeconds =
+      findSeconds_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - ropeStart).count();
 }
 
 void RopeWorld::failRopeContacts(const char* message) {

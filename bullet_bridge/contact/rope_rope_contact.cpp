@@ -585,6 +585,11 @@ RopeRopeContacts::Candidate RopeRopeContacts::pointContact(const Rod& rodA, cons
 
 int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs,
                             double h, std::vector<RopePairContactRecord>& records) {
+  detect(ropes, pairs);
+  return respond(ropes, h, records);
+}
+
+void RopeRopeContacts::detect(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs) {
   candidates_.clear();
   stretches_.clear();
   hits_.clear();
@@ -778,6 +783,10 @@ int RopeRopeContacts::solve(const std::vector<RopeObject*>& ropes, const std::ve
   }
   candidates_.swap(kept_);
   candidates_.insert(candidates_.end(), samples_.begin(), samples_.end());
+}
+
+int RopeRopeContacts::respond(const std::vector<RopeObject*>& ropes, double h,
+                              std::vector<RopePairContactRecord>& records) {
   for (Candidate& candidate : candidates_) {
     const RopeObject& ropeA = *ropes[static_cast<size_t>(candidate.ropeA)];
     const RopeObject& ropeB = *ropes[static_cast<size_t>(candidate.ropeB)];

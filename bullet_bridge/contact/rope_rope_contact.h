@@ -79,6 +79,12 @@ class RopeRopeContacts {
   // contact is reported inactive).
   int solve(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs, double h,
             std::vector<RopePairContactRecord>& records);
+  // solve() in two halves. detect() finds the contacts: it reads only the ropes' capsules and their
+  // rods' state before the step (not their trials, loads or records) and calls no user code, so it
+  // may run on another thread while the ropes' trials are solved (rope_world.cpp). respond() then
+  // records them and solves them with the trials, as solve() does.
+  void detect(const std::vector<RopeObject*>& ropes, const std::vector<RopeCapsulePair>& pairs);
+  int respond(const std::vector<RopeObject*>& ropes, double h, std::vector<RopePairContactRecord>& records);
   // m: the part of two ropes' speculative margins (BulletRopeSettings::speculativeMargin, m) a pair's
   // candidates reach beyond the radii (r, m) before the step's travel: the larger margin, at most half
   // the radii's sum (the body margin, sized for fast ropes against thin bodies, would flood a knot

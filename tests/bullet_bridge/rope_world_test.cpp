@@ -13,8 +13,11 @@
 #include <functional>
 #include <string>
 #include <limits>
+#include <thread>
 
+#include "demos/scenes/capstan_scene.h"
 #include "demos/scenes/drape_scene.h"
+#include "demos/scenes/pile_scene.h"
 #include "demos/scenes/physics_world.h"
 #include "rope/common/error.h"
 
@@ -321,6 +324,73 @@ TEST(RopeWorldScenario, TwinRunsAreBitwiseIdentical) {
   EXPECT_EQ(first.rope().rod().controlPoints(), second.rope().rod().controlPoints());
   EXPECT_EQ(first.rope().rod().velocities(), second.rope().rod().velocities());
   EXPECT_EQ(first.rope().contacts().size(), second.rope().contacts().size());
+}
+
+// Side detection (RopeWorld::setParallelContactDetection) does the same work in another order: a
+// world with it and one without give the same ropes and contacts, bit for bit, and the one with it
+// did use the side thread. The 2 m pile (one rope, self-contact) and a rope held round a taut rope
+// (two ropes, distributed rope-rope contact with stick state).
+template <class Scene>
+void expectSideDetectionChangesNoBit(Scene& inTurn, Scene& beside, int steps) {
+  inTurn.physics().ropes().setParallelContactDetection(false);
+  beside.physics().ropes().setParallelContactDetection(true);
+  int besideSubsteps = 0, pairedSubsteps = 0;
+  inTurn.physics().ropes().setSubstepCallback([&](const ContactReport& report) {
+    EXPECT_FALSE(report.detectedOnSideThread);
+    if (!report.ropeContacts.empty()) ++pairedSubsteps;
+  });
+  beside.physics().ropes().setSubstepCallback([&](const ContactReport& report) {
+    if (report.detectedOnSideThread) ++besideSubsteps;
+  });
+  for (int i = 0; i < steps; ++i) {
+    inTurn.step();
+    beside.step();
+  }
+  const auto& a = inTurn.physics().ropes().ropes();
+  const auto& b = beside.physics().ropes().ropes();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t r = 0; r < a.size(); ++r) {
+    EXPECT_EQ(a[r]->rod().knots().values(), b[r]->rod().knots().values()) << "rope " << r;
+    EXPECT_EQ(a[r]->rod().controlPoints(), b[r]->rod().controlPoints()) << "rope " << r;
+    EXPECT_EQ(a[r]->rod().velocities(), b[r]->rod().velocities()) << "rope " << r;
+    EXPECT_EQ(a[r]->lastStep().ropeContacts, b[r]->lastStep().ropeContacts) << "rope " << r;
+    EXPECT_EQ(a[r]->warnings().exceptions, 0) << "rope " << r;
+  }
+  const ContactReport& x = inTurn.physics().ropes().lastReport();
+  const ContactReport& y = beside.physics().ropes().lastReport();
+  ASSERT_EQ(x.ropeContacts.size(), y.ropeContacts.size());
+  for (std::size_t k = 0; k < x.ropeContacts.size(); ++k) {
+    EXPECT_EQ(x.ropeContacts[k].sA, y.ropeContacts[k].sA);
+    EXPECT_EQ(x.ropeContacts[k].sB, y.ropeContacts[k].sB);
+    EXPECT_EQ(x.ropeContacts[k].force, y.ropeContacts[k].force);
+    EXPECT_EQ(x.ropeContacts[k].active, y.ropeContacts[k].active);
+  }
+  // Most substeps had rope contacts, and most of those went to the side thread (the first ones with
+  // pairs do not: a substep uses it when the last one had pairs enough).
+  EXPECT_GT(pairedSubsteps, steps / 2);
+  EXPECT_GT(besideSubsteps, pairedSubsteps / 2);
+}
+
+TEST(RopeWorldScenario, SideDetectionChangesNoBitInThePile) {
+  demos::PileScene inTurn{demos::PileSceneSettings{}};
+  demos::PileScene beside{demos::PileSceneSettings{}};
+  expectSideDetectionChangesNoBit(inTurn, beside, 360);  // 1.5 s: falls, lands, heaps
+}
+
+TEST(RopeWorldScenario, SideDetectionChangesNoBitRoundATautRope) {
+  demos::CapstanSceneSettings settings;
+  settings.obstacle = demos::CapstanSceneSettings::Obstacle::kTautRope;
+  settings.loadRatio = 0.9 * settings.capstanLimit();
+  demos::CapstanScene inTurn{settings};
+  demos::CapstanScene beside{settings};
+  expectSideDetectionChangesNoBit(inTurn, beside, 240);
+}
+
+TEST(RopeWorld, ParallelContactDetectionIsOnWhereTheMachineHasTwoThreads) {
+  demos::PhysicsWorld physics;
+  EXPECT_EQ(physics.ropes().parallelContactDetection(), std::thread::hardware_concurrency() > 1);
+  physics.ropes().setParallelContactDetection(false);
+  EXPECT_FALSE(physics.ropes().parallelContactDetection());
 }
 
 TEST(RopeWorld, AddAndRemoveAreSymmetric) {

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// One helper thread that runs one job at a time beside the calling thread (RopeWorld: the rope-rope
+// and self-contact detection, which reads only the ropes' state before the substep, while the
+// calling thread solves the ropes' body contacts and trial steps; rope_world.cpp).
+//
+// - The job runs in the caller's floating-point environment (rounding mode, exception traps and
+//   flush-to-zero flags, copied at each start): a program that traps FP exceptions traps them in the
+//   job too, and the job computes exactly what it would have computed on the caller's thread.
+// - Handing a job over costs a few microseconds at most: the helper waits for the next job by
+//   spinning for up to kSpinSeconds before it sleeps (wake() ahead of start() wakes it early), and
+//   the caller waits for the job's end by spinning before it sleeps. A substep of ropes in contact
+//   with each other is some 300 microseconds to a few milliseconds long.
+// - If the thread cannot be created (std::system_error), jobs run on the caller's thread inside
+//   start(): slower, the same results.
+// - The job must not throw (catch inside it); start() and wait() come in pairs from one thread.
+// Internal (not installed): rope_world.h holds it through a pointer.
+
+#include <atomic>
+#include <condition_variable>
+#include <cfenv>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+
+namespace rope::bullet {
+
+class SideThread {
+ public:
+  using Job = void (*)(void* context);
+  SideThread() = default;
+  ~SideThread();
+  SideThread(const SideThread&) = delete;
+  SideThread& operator=(const SideThread&) = delete;
+
+  // Wakes the helper if it sleeps, so that it spins for the job start() will hand it soon: its
+  // wake-up (tens of microseconds) then passes while the caller prepares the job.
+  void wake();
+  // Runs job(context) on the helper thread (created at the first call), returning at once.
+  void start(Job job, void* context);
+  // Returns when the job start() began has finished (at once if none is running).
+  void wait();
+  // s: how long either side spins before it sleeps (a 2 m pile's substep hands over every ~0.4 ms).
+  static constexpr double kSpinSeconds = 200e-6;
+
+ private:
+  void loop();
+  std::thread thread_;
+  bool threadFailed_ = false;  // the thread could not be created: jobs run inline
+  std::mutex mutex_;
+  std::condition_variable jobReady_, jobDone_;
+  Job job_ = nullptr;
+  void* context_ = nullptr;
+  std::fenv_t environment_{};
+  std::atomic<std::uint64_t> started_{0}, finished_{0};  // jobs handed over and completed
+  bool stop_ = false;   // under mutex_
+  bool woken_ = false;  // under mutex_: wake() since the helper last slept
+};
+
+}  // namespace rope::bullet

@@ -17,6 +17,7 @@
 #include "bullet_bridge/capsule_proxies.h"
 #include "bullet_bridge/detail/guarded_call.h"
 #include "bullet_bridge/detail/self_pair_cache.h"
+#include "bullet_bridge/detail/faster_of_two.h"
 #include "bullet_bridge/detail/side_thread.h"
 #include "bullet_bridge/detail/tree_pairs.h"
 #include "bullet_bridge/kinematic_rope.h"
@@ -90,8 +91,10 @@ RopeWorld::RopeWorld(btDiscreteDynamicsWorld& world)
       dispatch_(std::make_unique<RopeDispatch>(world)),
       action_(std::make_unique<Action>(*this)),
       selfWalk_(std::make_unique<SelfWalk>()),
-      parallelContactDetection_(std::thread::hardware_concurrency() > 1),
-      side_(std::make_unique<SideThread>()) {
+      detectionThread_(std::thread::hardware_concurrency() > 1 ? ContactDetectionThread::kFaster
+                                                               : ContactDetectionThread::kCaller),
+      side_(std::make_unique<SideThread>()),
+      fasterWay_(std::make_unique<FasterOfTwo>()) {
   world_.addAction(action_.get());
 }
 
@@ -210,12 +213,15 @@ void RopeWorld::substep(double h) {
     ropeStages_[static_cast<std::size_t>(pair.ropeA)] = RopeStage::kPaired;
     ropeStages_[static_cast<std::size_t>(pair.ropeB)] = RopeStage::kPaired;
   }
-  if (detectBeside()) {
+  const bool timed = detectionThread_ == ContactDetectionThread::kFaster && sideDetectionWorthTrying();
+  const auto start = std::chrono::steady_clock::now();
+  if (detectionThread_ == ContactDetectionThread::kSide ? sideDetectionWorthTrying() : timed && fasterWay_->next() == 1) {
     stepRopesWithSideDetection(h);
   } else {
     stepRopesInTurn(h);
     solveRopeContacts(h);
   }
+  if (timed) fasterWay_->record(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 
   for (std::size_t r = 0; r < ropes_.size(); ++r) {
     RopeObject* rope = ropes_[r];
@@ -322,34 +328,42 @@ void RopeWorld::stepRopesInTurn(double h) {
     // capsules' rest arclengths (collideTrees), and those are the ones the solve reads. Guarded as the
     // begin is: those arclengths are evaluated on the rod, and nothing may throw out of a step.
     bool selfPaired = false;
-    guardedCall([&] { selfPaired = collideSelf(rope, h, report_.pairScanSeconds); },
-                [&](const char* message) { rope.failSubstep(message); });
+    guardedCall([&] { selfPaired = collideSelf(rope, h); }, [&](const char* message) { rope.failSubstep(message); });
     settleStage(r, resting, selfPaired, h);
   }
 }
 
-bool RopeWorld::detectBeside() const {
+bool RopeWorld::sideDetectionWorthTrying() const {
   // Worth a hand-over (a few microseconds each way) only where there are pairs to test: the last
   // substep's count predicts this one's (a rope that lies alone has none). Either way the results
   // are the same, bit for bit.
-  return parallelContactDetection_ && lastPairCount_ >= kMinPairsBeside;
+  return lastPairCount_ >= kMinPairsBeside;
+}
+
+void RopeWorld::setContactDetectionThread(ContactDetectionThread where) {
+  if (where != ContactDetectionThread::kCaller && where != ContactDetectionThread::kSide &&
+      where != ContactDetectionThread::kFaster) {
+    throw InvalidArgument("where", std::to_string(static_cast<int>(where)),
+                          "must be ContactDetectionThread::kCaller, kSide or kFaster");
+  }
+  detectionThread_ = where;
 }
 
 void RopeWorld::stepRopesWithSideDetection(double h) {
-  // The rope-rope and self-contact detection (the self-contact walks, then RopeRopeContacts::
-  // detect) reads only the ropes' capsules and their state before the step, which are settled once
-  // every rope has run RopeObject::prepareSubstep; the body contacts and trial steps
+  // The rope-rope and self-contact detection (RopeRopeContacts::detect, after the self-contact walks)
+  // reads only the ropes' capsules and their state before the step, which are settled once every
+  // rope has run RopeObject::prepareSubstep; the body contacts and trial steps
   // (RopeObject::solveSubstepTrial) change neither. So the detection runs on the side thread while
   // this one solves the ropes' body contacts and trials: the same work as stepRopesInTurn in another
   // order, with the same results bit for bit (the ropes that finish alone are finished after every
-  // rope has begun, which stepRopesInTurn says changes nothing). Two passes over the ropes instead of
-  // one visit each: for the pile and the knot the time saved is the detection's share of the step.
+  // rope has begun, which stepRopesInTurn says changes nothing). The self-contact walks stay here,
+  // before the hand-over: the knot's detection took longer than its body contacts and trial (perf:
+  // 125 against 90 us per substep), so the walks shorten the step more here than there.
   side_->wake();  // while the ropes are prepared
   const std::size_t count = ropes_.size();
   restingAtStart_.assign(count, 0);
   prepared_.assign(count, 0);
   selfPaired_.assign(count, 0);
-  sideRopeFailures_.clear();
   for (std::size_t r = 0; r < count; ++r) {
     RopeObject& rope = *ropes_[r];
     readyRope(r);
@@ -360,56 +374,43 @@ void RopeWorld::stepRopesWithSideDetection(double h) {
       if (!rope.rod().hasTrial()) rope.swapStepScratch(stepScratch_);
       guardedCall([&] {
         rope.prepareSubstep(h);
+        // The capsules' end speeds and rest arclengths are computed when first asked for and kept
+        // (CapsuleProxies): asked here, the side thread and this one only read them.
+        rope.proxies().endSpeeds(rope.rod());
+        rope.proxies().endArcs(rope.rod());
         prepared_[r] = 1;
       }, [&](const char* message) { rope.failSubstep(message); });
     }
-    // The capsules' end speeds and rest arclengths are computed when first asked for and kept
-    // (CapsuleProxies): asked here, the side thread and this one only read them. A rope that fails
-    // here fails its substep, and only the side thread reads it from now on.
-    if (prepared_[r]) {
-      guardedCall([&] {
-        rope.proxies().endSpeeds(rope.rod());
-        rope.proxies().endArcs(rope.rod());
-      }, [&](const char* message) {
-        prepared_[r] = 0;
-        rope.failSubstep(message);
-      });
-    }
+    // A rope whose walk fails fails its substep, here before its trial (stepRopesInTurn: after it,
+    // which the failure then drops): either way it keeps its state.
+    guardedCall([&] { selfPaired_[r] = collideSelf(rope, h) ? 1 : 0; },
+                [&](const char* message) {
+                  prepared_[r] = 0;
+                  rope.failSubstep(message);
+                });
+    if (selfPaired_[r]) ropeStages_[r] = RopeStage::kPaired;  // as settleStage will
   }
-  // From here until the side job ends this thread reads and writes only the prepared ropes' trials,
-  // loads, body contacts and records, and the job only the ropes' capsules and state before the
-  // step, capsulePairs_, the stages, the self-walk scratch, the rope-rope solver and the side_*
-  // members; the report waits for it.
+  // From here until the side job ends, this thread reads and writes only the prepared ropes' trials,
+  // loads, body contacts and records, and the job only the paired ropes' capsules and state before
+  // the step, capsulePairs_ and the rope-rope solver; the report waits for it.
   struct WaitForSide {  // whatever happens below, the side job ends before this function does
     SideThread& side;
     ~WaitForSide() { side.wait(); }
   } waitForSide{*side_};
   sideStep_ = h;
   report_.detectedOnSideThread = true;
-  side_->start([](void* world) { static_cast<RopeWorld*>(world)->detectOnSide(); }, this);
+  side_->start([](void* world) {
+    RopeWorld& self = *static_cast<RopeWorld*>(world);
+    self.findRopeContacts(self.sideStep_);
+  }, this);
   for (std::size_t r = 0; r < count; ++r) {
     if (!prepared_[r]) continue;
     RopeObject& rope = *ropes_[r];
     guardedCall([&] { rope.solveSubstepTrial(candidates_[r], h); }, [&](const char* message) { rope.failSubstep(message); });
   }
   side_->wait();
-  report_.pairScanSeconds += sideScanSeconds_;
-  for (const auto& failure : sideRopeFailures_) ropes_[failure.first]->failSubstep(failure.second.c_str());
   for (std::size_t r = 0; r < count; ++r) settleStage(r, restingAtStart_[r] != 0, selfPaired_[r] != 0, h);
   respondToRopeContacts(h);
-}
-
-void RopeWorld::detectOnSide() {
-  const double h = sideStep_;
-  sideScanSeconds_ = 0.0;
-  for (std::size_t r = 0; r < ropes_.size(); ++r) {
-    guardedCall([&] { selfPaired_[r] = collideSelf(*ropes_[r], h, sideScanSeconds_) ? 1 : 0; },
-                [&](const char* message) { sideRopeFailures_.emplace_back(r, message); });
-  }
-  for (std::size_t r = 0; r < ropes_.size(); ++r) {
-    if (selfPaired_[r]) ropeStages_[r] = RopeStage::kPaired;  // as settleStage will
-  }
-  findRopeContacts(h);
 }
 
 void RopeWorld::startReport(double h) {
@@ -471,14 +472,14 @@ void RopeWorld::findCandidates(double h) {
   report_.pairScanSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - scanStart).count();
 }
 
-bool RopeWorld::collideSelf(const RopeObject& rope, double h, double& scanSeconds) {
+bool RopeWorld::collideSelf(const RopeObject& rope, double h) {
   // Self-contact needs the rope's own group in its mask, as for a pair of two ropes.
   const BulletRopeSettings& settings = rope.settings();
   if (!settings.selfContact || (settings.collisionGroup & settings.collisionMask) == 0) return false;
   const auto start = std::chrono::steady_clock::now();
   const std::size_t before = capsulePairs_.size();
   findSelfPairs(rope, h);
-  scanSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report_.pairScanSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return capsulePairs_.size() > before;
 }
 

@@ -55,6 +55,7 @@
 
 namespace rope::bullet {
 
+class FasterOfTwo;
 class SideThread;
 
 class RopeWorld {
@@ -103,15 +104,25 @@ class RopeWorld {
   void setBodyFrictionCombiner(BodyFrictionCombiner combiner) { bodyFrictionCombiner_ = std::move(combiner); }
   void setRopeFrictionCombiner(RopeFrictionCombiner combiner) { ropeRopeContacts_.setFrictionCombiner(std::move(combiner)); }
 
-  // Whether a substep's rope-rope and self-contact detection runs on a second thread, owned by this
-  // RopeWorld, while the calling thread solves the ropes' body contacts and trial steps. Results are
-  // bit for bit the same either way (the same work in another order); only the wall-clock time of a
-  // step with ropes in contact with each other changes (the 2 m pile: about a quarter shorter; the
-  // CPU time is a little longer, for the hand-over). The thread starts at the first substep that uses
-  // it and stops with the RopeWorld; it runs no user code. Default: on if the machine has more than
-  // one hardware thread (std::thread::hardware_concurrency()).
-  void setParallelContactDetection(bool enabled) { parallelContactDetection_ = enabled; }
-  bool parallelContactDetection() const { return parallelContactDetection_; }
+  // Where a substep's rope-rope and self-contact detection runs. The results are bit for bit the
+  // same either way (the same work in another order); only the wall-clock time of a step with ropes
+  // near each other or themselves changes.
+  enum class ContactDetectionThread {
+    kCaller,  // the thread that steps the world, in turn with the ropes' body contacts and trials
+    // A second thread, owned by this RopeWorld, beside the ropes' body contacts and trials, in every
+    // substep after one with at least 64 capsule pairs to test (fewer are not worth the hand-over).
+    // The 2 m pile's step takes about two thirds of the time on an idle second core; a core busy with
+    // another program can make it longer. It runs no user code and starts at the first such substep.
+    kSide,
+    // kSide or kCaller, whichever this RopeWorld timed faster lately: in such substeps it tries both
+    // (8 substeps each, alternating) and then runs the faster for 240 substeps, and so on.
+    kFaster,
+  };
+  // Default: kFaster if the machine has more than one hardware thread
+  // (std::thread::hardware_concurrency()), else kCaller. Throws InvalidArgument("where", ...) for a
+  // value that is none of the three, and changes nothing then.
+  void setContactDetectionThread(ContactDetectionThread where);
+  ContactDetectionThread contactDetectionThread() const { return detectionThread_; }
 
   // Whether btDiscreteDynamicsWorld::debugDrawWorld also draws the ropes (rope_debug_draw.h). Default on.
   void setDebugDrawEnabled(bool enabled) { debugDraw_ = enabled; }
@@ -128,11 +139,11 @@ class RopeWorld {
   // (rope_world.cpp says why), each for the ropes its swept box meets.
   void addFastBodies(double h);
   // The ropes' part of a substep, rope by rope (stepRopesInTurn, then solveRopeContacts), or with the
-  // contact detection on the side thread (stepRopesWithSideDetection, when detectBeside()).
+  // contact detection on the side thread (stepRopesWithSideDetection; sideDetectionWorthTrying()
+  // says when it may be).
   void stepRopesInTurn(double h);
-  bool detectBeside() const;
+  bool sideDetectionWorthTrying() const;
   void stepRopesWithSideDetection(double h);
-  void detectOnSide();  // the side thread's job
   // Before a rope's begin: drops departed bodies' attachments, orders its candidates, sets gravity.
   void readyRope(std::size_t r);
   // After a rope's begin and self-contact walk: finishes it at once if it can (finishesAlone) and
@@ -150,8 +161,8 @@ class RopeWorld {
   // Rope-rope capsule pairs of two ropes from their trees (ropeA < ropeB by world index).
   void collideTrees(const RopeObject& a, const RopeObject& b);
   // The rope's self-contact pairs (if its settings want them) for the substep h (s); true if it
-  // found any. Adds the time it took to scanSeconds (s).
-  bool collideSelf(const RopeObject& rope, double h, double& scanSeconds);
+  // found any.
+  bool collideSelf(const RopeObject& rope, double h);
   // collideSelf's search: the rope's capsule pairs that the rope-rope solve may keep, appended to
   // capsulePairs_ (rope_world.cpp says how).
   void findSelfPairs(const RopeObject& rope, double h);
@@ -192,16 +203,15 @@ class RopeWorld {
   std::string detectFailure_;  // findRopeContacts: the exception's message, empty if none
   double findSeconds_ = 0.0;   // findRopeContacts' time, s (part of ContactReport::ropeContactSeconds)
   // Side detection (stepRopesWithSideDetection): the thread, and what its job reads and writes.
-  bool parallelContactDetection_ = false;
+  ContactDetectionThread detectionThread_ = ContactDetectionThread::kCaller;
   std::unique_ptr<SideThread> side_;
+  std::unique_ptr<FasterOfTwo> fasterWay_;  // kFaster: way 1 is the side thread
   // A substep uses the side thread if the last one had at least this many capsule pairs to test: a
   // hand-over costs microseconds, the pile's detection some 100 (a few pairs are not worth it).
   static constexpr std::size_t kMinPairsBeside = 64;
   std::size_t lastPairCount_ = 0;  // capsule pairs of the last substep, before the solve's filter
-  double sideStep_ = 0.0;          // h of the side job, s
-  double sideScanSeconds_ = 0.0;   // the side job's self-contact walks, s (pairScanSeconds)
+  double sideStep_ = 0.0;          // h of the side job (findRopeContacts), s
   std::vector<unsigned char> restingAtStart_, prepared_, selfPaired_;  // per rope, that substep
-  std::vector<std::pair<std::size_t, std::string>> sideRopeFailures_;   // self-walk exceptions, by rope
   ContactReport report_;
   std::function<void(const ContactReport&)> callback_;
   BodyFrictionCombiner bodyFrictionCombiner_;

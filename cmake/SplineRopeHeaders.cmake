@@ -104,6 +104,7 @@ set(SPLINEROPE_BULLET_BRIDGE_INTERNAL_HEADERS
   bullet_bridge/detail/self_pair_cache.h
   bullet_bridge/detail/rest_arc.h
   bullet_bridge/detail/side_thread.h
+  bullet_bridge/detail/faster_of_two.h
   bullet_bridge/collision_object/capsule_dispatch.h
 )
 

@@ -83,6 +83,15 @@ void SideThread::start(Job job, void* context) {
 
 void SideThread::wait() {
   const std::uint64_t target = started_.load(std::memory_order_relaxed);
+  if (finished_.load(std::memory_order_acquire) == target) return;
+  // A job the helper has not begun yet (asleep, or not given a core) runs here: never slower than
+  // running it here in the first place.
+  std::uint64_t unclaimed = target - 1;
+  if (claimed_.compare_exchange_strong(unclaimed, target, std::memory_order_acq_rel)) {
+    job_(context_);
+    finished_.store(target, std::memory_order_release);
+    return;
+  }
   const auto done = [&] { return finished_.load(std::memory_order_acquire) == target; };
   if (spinUntil(done)) return;
   std::unique_lock<std::mutex> lock(mutex_);
@@ -101,6 +110,8 @@ void SideThread::loop() {
       if (!ready()) continue;  // woken ahead of a job: spin for it
     }
     seen = started_.load(std::memory_order_acquire);
+    std::uint64_t unclaimed = seen - 1;
+    if (!claimed_.compare_exchange_strong(unclaimed, seen, std::memory_order_acq_rel)) continue;  // wait() ran it
     std::fesetenv(&environment_);
     job_(context_);
     {

@@ -11,6 +11,9 @@
 //   spinning for up to kSpinSeconds before it sleeps (wake() ahead of start() wakes it early), and
 //   the caller waits for the job's end by spinning before it sleeps. A substep of ropes in contact
 //   with each other is some 300 microseconds to a few milliseconds long.
+// - A job the helper has not begun when the caller waits for it (the helper asleep, or its core busy
+//   with another program) runs on the caller's thread inside wait(), so a busy machine makes a step
+//   no slower than running the job there to begin with.
 // - If the thread cannot be created (std::system_error), jobs run on the caller's thread inside
 //   start(): slower, the same results.
 // - The job must not throw (catch inside it); start() and wait() come in pairs from one thread.
@@ -38,7 +41,8 @@ class SideThread {
   void wake();
   // Runs job(context) on the helper thread (created at the first call), returning at once.
   void start(Job job, void* context);
-  // Returns when the job start() began has finished (at once if none is running).
+  // Returns when the job start() handed over has finished (at once if none is running), after running
+  // it here if the helper has not begun it.
   void wait();
   // s: how long either side spins before it sleeps (a 2 m pile's substep hands over every ~0.4 ms).
   static constexpr double kSpinSeconds = 200e-6;
@@ -52,7 +56,8 @@ class SideThread {
   Job job_ = nullptr;
   void* context_ = nullptr;
   std::fenv_t environment_{};
-  std::atomic<std::uint64_t> started_{0}, finished_{0};  // jobs handed over and completed
+  // Jobs handed over, begun (by the helper, or by wait() if the helper had not begun it) and completed.
+  std::atomic<std::uint64_t> started_{0}, claimed_{0}, finished_{0};
   bool stop_ = false;   // under mutex_
   bool woken_ = false;  // under mutex_: wake() since the helper last slept
 };

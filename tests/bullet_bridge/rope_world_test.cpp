@@ -326,14 +326,14 @@ TEST(RopeWorldScenario, TwinRunsAreBitwiseIdentical) {
   EXPECT_EQ(first.rope().contacts().size(), second.rope().contacts().size());
 }
 
-// Side detection (RopeWorld::setParallelContactDetection) does the same work in another order: a
-// world with it and one without give the same ropes and contacts, bit for bit, and the one with it
-// did use the side thread. The 2 m pile (one rope, self-contact) and a rope held round a taut rope
+// Side detection (RopeWorld::ContactDetectionThread::kSide) does the same work in another order: a
+// world with it and one without (kCaller) give the same ropes and contacts, bit for bit, and the one
+// with it did use the side thread. The 2 m pile (one rope, self-contact) and a rope held round a taut rope
 // (two ropes, distributed rope-rope contact with stick state).
 template <class Scene>
 void expectSideDetectionChangesNoBit(Scene& inTurn, Scene& beside, int steps) {
-  inTurn.physics().ropes().setParallelContactDetection(false);
-  beside.physics().ropes().setParallelContactDetection(true);
+  inTurn.physics().ropes().setContactDetectionThread(RopeWorld::ContactDetectionThread::kCaller);
+  beside.physics().ropes().setContactDetectionThread(RopeWorld::ContactDetectionThread::kSide);
   int besideSubsteps = 0, pairedSubsteps = 0;
   inTurn.physics().ropes().setSubstepCallback([&](const ContactReport& report) {
     EXPECT_FALSE(report.detectedOnSideThread);
@@ -386,11 +386,41 @@ TEST(RopeWorldScenario, SideDetectionChangesNoBitRoundATautRope) {
   expectSideDetectionChangesNoBit(inTurn, beside, 240);
 }
 
-TEST(RopeWorld, ParallelContactDetectionIsOnWhereTheMachineHasTwoThreads) {
+TEST(RopeWorld, ContactDetectionThreadIsTheFasterWhereTheMachineHasTwoThreads) {
+  using Where = RopeWorld::ContactDetectionThread;
   demos::PhysicsWorld physics;
-  EXPECT_EQ(physics.ropes().parallelContactDetection(), std::thread::hardware_concurrency() > 1);
-  physics.ropes().setParallelContactDetection(false);
-  EXPECT_FALSE(physics.ropes().parallelContactDetection());
+  EXPECT_EQ(physics.ropes().contactDetectionThread(),
+            std::thread::hardware_concurrency() > 1 ? Where::kFaster : Where::kCaller);
+  physics.ropes().setContactDetectionThread(Where::kSide);
+  EXPECT_EQ(physics.ropes().contactDetectionThread(), Where::kSide);
+  try {
+    physics.ropes().setContactDetectionThread(static_cast<Where>(7));
+    ADD_FAILURE() << "no exception";
+  } catch (const InvalidArgument& error) {
+    EXPECT_NE(std::string(error.what()).find("where"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find('7'), std::string::npos) << error.what();
+  }
+  EXPECT_EQ(physics.ropes().contactDetectionThread(), Where::kSide);  // unchanged
+}
+
+// The default (kFaster) times both ways and keeps to whichever is faster, with the same results:
+// the pile under it is the pile in turn, bit for bit.
+TEST(RopeWorldScenario, TimedChoiceOfTheDetectionThreadChangesNoBit) {
+  demos::PileScene inTurn{demos::PileSceneSettings{}};
+  demos::PileScene timed{demos::PileSceneSettings{}};
+  inTurn.physics().ropes().setContactDetectionThread(RopeWorld::ContactDetectionThread::kCaller);
+  timed.physics().ropes().setContactDetectionThread(RopeWorld::ContactDetectionThread::kFaster);
+  int beside = 0;
+  timed.physics().ropes().setSubstepCallback([&](const ContactReport& report) {
+    if (report.detectedOnSideThread) ++beside;
+  });
+  for (int i = 0; i < 300; ++i) {
+    inTurn.step();
+    timed.step();
+  }
+  EXPECT_GE(beside, 8);  // at least the first trial's side substeps
+  EXPECT_EQ(inTurn.rope().rod().controlPoints(), timed.rope().rod().controlPoints());
+  EXPECT_EQ(inTurn.rope().rod().velocities(), timed.rope().rod().velocities());
 }
 
 TEST(RopeWorld, AddAndRemoveAreSymmetric) {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cfenv>
 #include <chrono>
 #include <thread>
@@ -15,6 +16,7 @@ struct Record {
   std::thread::id thread;
   int rounding = -1;
   int traps = -1;
+  std::atomic<int> published{0};  // runs, stored last: the caller can watch it without wait()
 };
 
 void recordJob(void* context) {
@@ -23,27 +25,54 @@ void recordJob(void* context) {
   record.thread = std::this_thread::get_id();
   record.rounding = std::fegetround();
   record.traps = fegetexcept();
+  record.published.store(record.runs, std::memory_order_release);
 }
 
-TEST(SideThread, RunsEachJobOnceOnAnotherThreadAndWaitReturnsAfterIt) {
+// Starts the job and lets the helper run it: the caller watches for its end before wait(), which
+// would otherwise run a job the helper has not begun itself.
+void runOnHelper(SideThread& side, Record& record) {
+  const int before = record.published.load(std::memory_order_acquire);
+  side.start(recordJob, &record);
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (record.published.load(std::memory_order_acquire) == before && std::chrono::steady_clock::now() < end) {
+    std::this_thread::yield();
+  }
+  side.wait();
+}
+
+TEST(SideThread, HelperRunsTheJobOnItsOwnThread) {
+  SideThread side;
+  Record record;
+  for (int k = 1; k <= 3; ++k) {
+    runOnHelper(side, record);
+    EXPECT_EQ(record.runs, k);
+    EXPECT_NE(record.thread, std::this_thread::get_id());
+  }
+}
+
+TEST(SideThread, RunsEachJobOnceAndWaitReturnsAfterIt) {
   SideThread side;
   Record record;
   for (int k = 1; k <= 2000; ++k) {
     side.start(recordJob, &record);
-    side.wait();
+    side.wait();  // the job ran on the helper, or here if the helper had not begun it
     ASSERT_EQ(record.runs, k);  // not atomic: wait() orders the job's writes before this read
   }
-  EXPECT_NE(record.thread, std::this_thread::get_id());
   side.wait();  // no job running: returns at once
   EXPECT_EQ(record.runs, 2000);
 }
 
-TEST(SideThread, WakesFromSleepForTheNextJob) {
+TEST(SideThread, RunsEachJobOnceWhetherTheHelperSleptOrWasWoken) {
   SideThread side;
   Record record;
-  for (int k = 1; k <= 5; ++k) {
-    // Longer than both sides spin, so the helper is asleep when the job comes.
+  for (int k = 1; k <= 20; ++k) {
+    // Longer than both sides spin, so the helper is asleep when the job comes: wait() right away
+    // mostly runs it itself; after wake() the helper mostly does. Either way exactly once.
     std::this_thread::sleep_for(std::chrono::duration<double>(4.0 * SideThread::kSpinSeconds));
+    if (k % 2 == 0) {
+      side.wake();
+      std::this_thread::sleep_for(std::chrono::duration<double>(0.25 * SideThread::kSpinSeconds));
+    }
     side.start(recordJob, &record);
     side.wait();
     EXPECT_EQ(record.runs, k);
@@ -56,20 +85,18 @@ TEST(SideThread, JobRunsInTheCallersFloatingPointEnvironment) {
   const int rounding = std::fegetround(), traps = fegetexcept();  // the test program's (it traps)
   SideThread side;
   Record record;
-  side.start(recordJob, &record);
-  side.wait();
+  runOnHelper(side, record);
   EXPECT_EQ(record.rounding, rounding);
   EXPECT_EQ(record.traps, traps);
   std::fesetround(FE_UPWARD);
   fedisableexcept(FE_ALL_EXCEPT);
   feenableexcept(FE_DIVBYZERO);
-  side.start(recordJob, &record);
-  side.wait();
+  runOnHelper(side, record);
   std::fesetenv(&saved);
+  EXPECT_NE(record.thread, std::this_thread::get_id());
   EXPECT_EQ(record.rounding, FE_UPWARD);
   EXPECT_EQ(record.traps, FE_DIVBYZERO);
-  side.start(recordJob, &record);  // and back
-  side.wait();
+  runOnHelper(side, record);  // and back
   EXPECT_EQ(record.rounding, rounding);
   EXPECT_EQ(record.traps, traps);
 }

@@ -393,9 +393,14 @@ void RopeWorld::stepRopesWithSideDetection(double h) {
   // From here until the side job ends, this thread reads and writes only the prepared ropes' trials,
   // loads, body contacts and records, and the job only the paired ropes' capsules and state before
   // the step, capsulePairs_ and the rope-rope solver; the report waits for it.
-  struct WaitForSide {  // whatever happens below, the side job ends before this function does
+  struct WaitForSide {  // whatever is thrown below, the side job ends before this function does
     SideThread& side;
-    ~WaitForSide() { side.wait(); }
+    ~WaitForSide() {
+      try {
+        side.wait();
+      } catch (...) {  // the exception already on its way out is the one reported
+      }
+    }
   } waitForSide{*side_};
   sideStep_ = h;
   report_.detectedOnSideThread = true;
@@ -408,7 +413,7 @@ void RopeWorld::stepRopesWithSideDetection(double h) {
     RopeObject& rope = *ropes_[r];
     guardedCall([&] { rope.solveSubstepTrial(candidates_[r], h); }, [&](const char* message) { rope.failSubstep(message); });
   }
-  side_->wait();
+  side_->wait();  // rethrows what findRopeContacts let out (not the detection's own failures)
   for (std::size_t r = 0; r < count; ++r) settleStage(r, restingAtStart_[r] != 0, selfPaired_[r] != 0, h);
   respondToRopeContacts(h);
 }

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <system_error>
+#include <utility>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -83,19 +84,27 @@ void SideThread::start(Job job, void* context) {
 
 void SideThread::wait() {
   const std::uint64_t target = started_.load(std::memory_order_relaxed);
-  if (finished_.load(std::memory_order_acquire) == target) return;
-  // A job the helper has not begun yet (asleep, or not given a core) runs here: never slower than
-  // running it here in the first place.
-  std::uint64_t unclaimed = target - 1;
-  if (claimed_.compare_exchange_strong(unclaimed, target, std::memory_order_acq_rel)) {
-    job_(context_);
-    finished_.store(target, std::memory_order_release);
-    return;
-  }
   const auto done = [&] { return finished_.load(std::memory_order_acquire) == target; };
-  if (spinUntil(done)) return;
-  std::unique_lock<std::mutex> lock(mutex_);
-  jobDone_.wait(lock, done);
+  if (!done()) {
+    // A job the helper has not begun yet (asleep, or not given a core) runs here: never slower than
+    // running it here in the first place.
+    std::uint64_t unclaimed = target - 1;
+    if (claimed_.compare_exchange_strong(unclaimed, target, std::memory_order_acq_rel)) {
+      try {
+        job_(context_);
+      } catch (...) {
+        finished_.store(target, std::memory_order_release);  // ended, if not well
+        throw;
+      }
+      finished_.store(target, std::memory_order_release);
+      return;
+    }
+    if (!spinUntil(done)) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      jobDone_.wait(lock, done);
+    }
+  }
+  if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
 }
 
 void SideThread::loop() {
@@ -113,7 +122,11 @@ void SideThread::loop() {
     std::uint64_t unclaimed = seen - 1;
     if (!claimed_.compare_exchange_strong(unclaimed, seen, std::memory_order_acq_rel)) continue;  // wait() ran it
     std::fesetenv(&environment_);
-    job_(context_);
+    try {
+      job_(context_);
+    } catch (...) {
+      error_ = std::current_exception();
+    }
     {
       // Under the mutex, so that a caller about to sleep either sees the count or is woken.
       std::lock_guard<std::mutex> lock(mutex_);

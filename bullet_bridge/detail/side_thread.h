@@ -16,13 +16,15 @@
 //   no slower than running the job there to begin with.
 // - If the thread cannot be created (std::system_error), jobs run on the caller's thread inside
 //   start(): slower, the same results.
-// - The job must not throw (catch inside it); start() and wait() come in pairs from one thread.
+// - An exception the job throws on the helper is rethrown by wait() on the caller's thread (as it
+//   would be if wait() ran the job itself). start() and wait() come in pairs from one thread.
 // Internal (not installed): rope_world.h holds it through a pointer.
 
 #include <atomic>
 #include <condition_variable>
 #include <cfenv>
 #include <cstdint>
+#include <exception>
 #include <mutex>
 #include <thread>
 
@@ -42,7 +44,7 @@ class SideThread {
   // Runs job(context) on the helper thread (created at the first call), returning at once.
   void start(Job job, void* context);
   // Returns when the job start() handed over has finished (at once if none is running), after running
-  // it here if the helper has not begun it.
+  // it here if the helper has not begun it. Throws what the job threw.
   void wait();
   // s: how long either side spins before it sleeps (a 2 m pile's substep hands over every ~0.4 ms).
   static constexpr double kSpinSeconds = 200e-6;
@@ -56,6 +58,7 @@ class SideThread {
   Job job_ = nullptr;
   void* context_ = nullptr;
   std::fenv_t environment_{};
+  std::exception_ptr error_;  // what the job threw on the helper, for wait()
   // Jobs handed over, begun (by the helper, or by wait() if the helper had not begun it) and completed.
   std::atomic<std::uint64_t> started_{0}, claimed_{0}, finished_{0};
   bool stop_ = false;   // under mutex_

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cfenv>
 #include <chrono>
+#include <stdexcept>
 #include <thread>
 
 namespace rope::bullet {
@@ -99,6 +100,30 @@ TEST(SideThread, JobRunsInTheCallersFloatingPointEnvironment) {
   runOnHelper(side, record);  // and back
   EXPECT_EQ(record.rounding, rounding);
   EXPECT_EQ(record.traps, traps);
+}
+
+void throwingJob(void* context) {
+  recordJob(context);
+  throw std::runtime_error("thrown by the job");
+}
+
+TEST(SideThread, WaitRethrowsWhatTheJobThrewOnEitherThread) {
+  SideThread side;
+  Record record;
+  // On the helper (the caller waits for its end before wait()) ...
+  const int before = record.published.load(std::memory_order_acquire);
+  side.start(throwingJob, &record);
+  while (record.published.load(std::memory_order_acquire) == before) std::this_thread::yield();
+  EXPECT_THROW(side.wait(), std::runtime_error);
+  side.wait();  // once: the job has ended
+  // ... and in wait() itself, mostly (the helper asleep), or on the helper.
+  std::this_thread::sleep_for(std::chrono::duration<double>(4.0 * SideThread::kSpinSeconds));
+  side.start(throwingJob, &record);
+  EXPECT_THROW(side.wait(), std::runtime_error);
+  side.wait();
+  // The thread goes on with the next job.
+  runOnHelper(side, record);
+  EXPECT_EQ(record.runs, 3);
 }
 
 TEST(SideThread, DestroyedWithoutAJobOrAfterOne) {

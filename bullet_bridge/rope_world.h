@@ -207,7 +207,7 @@ class RopeWorld {
   std::unique_ptr<SideThread> side_;
   std::unique_ptr<FasterOfTwo> fasterWay_;  // kFaster: way 1 is the side thread
   // A substep uses the side thread if the last one had at least this many capsule pairs to test: a
-  // hand-over costs microseconds, the pile's detection some 100 (a few pairs are not worth it).
+  // hand-over costs microseconds, the pile's detection about 600 (a few pairs are not worth it).
   static constexpr std::size_t kMinPairsBeside = 64;
   std::size_t lastPairCount_ = 0;  // capsule pairs of the last substep, before the solve's filter
   double sideStep_ = 0.0;          // h of the side job (findRopeContacts), s
